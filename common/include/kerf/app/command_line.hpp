@@ -1,0 +1,33 @@
+/// @file command_line.hpp
+/// @brief The command line every chapter shares, and the one place that turns errors into exit codes.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace kerf {
+
+/// What the user asked for on the command line (DESIGN.md's contract).
+struct CommandLine {
+  std::optional<std::filesystem::path> scene;       ///< --scene FILE.json; none: the chapter's demo
+  std::optional<std::filesystem::path> probes_in;   ///< --probes IN.csv
+  std::optional<std::filesystem::path> probes_out;  ///< --probes-out OUT.csv
+  std::filesystem::path out_dir = "output";         ///< --out DIR: where VTK files and CSV go
+  bool quiet = false;                               ///< --quiet: no progress lines
+  bool help = false;                                ///< --help
+};
+
+/// Parses argv. Unknown options, missing values, and --probes without --probes-out (or the
+/// reverse) are InputErrors with the file name "command line".
+CommandLine parse_command_line(int argc, const char* const* argv);
+
+/// Runs `body` and turns every exception into one line on stderr and a non-zero exit status:
+/// 2 for bad input (InputError), 3 for a numerical failure or anything else. `--help` prints
+/// `usage` and returns 0. Every chapter's main() is a single call to this, so the try/catch is
+/// written once, here.
+int run_guarded(int argc, const char* const* argv, const std::string& program, const std::string& usage,
+                const std::function<void(const CommandLine&)>& body);
+
+} // namespace kerf

@@ -1,0 +1,39 @@
+/// @file tet_stiffness.hpp
+/// @brief Element stiffness matrices of Tet4 (12x12) and Tet10 (30x30) in linear elasticity, eq. (30).
+#pragma once
+
+#include "kerf/fem/linear_material.hpp"
+
+#include <Eigen/Core>
+
+namespace kerf {
+
+/// Adds weight times the integrand of eq. (30) to the element stiffness K (3n x 3n, node-major
+/// DOFs 3a + p), given the physical shape gradients g (n x 3, row a = grad N_a) at one point:
+///
+///   dF_ip / dP_jq = mu g_iq g_jp + mu delta_pq (g_i . g_j) + lambda g_ip g_jq.
+///
+/// This is the form the paper derives in appendix 7.1 (eq. 96); it equals B^T C B with the
+/// Voigt matrix of eq. (6), and it is cheaper: no 6 x 3n B matrix is formed.
+template <int n>
+void add_stiffness_integrand(const Eigen::Matrix<double, n, 3>& g, double weight, double mu, double lambda,
+                             Eigen::Matrix<double, 3 * n, 3 * n>& K) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Eigen::RowVector3d gi = g.row(i), gj = g.row(j);
+      Eigen::Matrix3d block = mu * gj.transpose() * gi + lambda * gi.transpose() * gj;
+      block.diagonal().array() += mu * gi.dot(gj);
+      K.template block<3, 3>(3 * i, 3 * j) += weight * block;
+    }
+}
+
+/// Tet4 element stiffness (eq. 30 with constant gradients, times the volume), 12x12.
+/// @param X 4x3 corner positions, positively oriented
+Eigen::Matrix<double, 12, 12> tet4_stiffness(const Eigen::Matrix<double, 4, 3>& X, const LinearMaterial& material);
+
+/// Tet10 element stiffness, 30x30: eq. (30) integrated with the 4-point degree-2 rule, which
+/// is exact for straight-edged Tet10 (their gradients are linear, the integrand quadratic).
+/// @param X 10x3 node positions (Kerf's Tet10 order)
+Eigen::Matrix<double, 30, 30> tet10_stiffness(const Eigen::Matrix<double, 10, 3>& X, const LinearMaterial& material);
+
+} // namespace kerf

@@ -1,0 +1,29 @@
+/// @file check_tet_mesh.hpp
+/// @brief Validate a mesh read from a file: finite coordinates, indices in range, no flat tets, positive orientation.
+#pragma once
+
+#include "kerf/mesh/tet_mesh.hpp"
+
+#include <ostream>
+#include <string>
+
+namespace kerf {
+
+/// Checks a mesh that came from outside and repairs what can be repaired safely.
+///
+/// - every coordinate must be finite, every index in [0, #V): otherwise InputError;
+/// - a tet whose volume is below 1e-12 times the volume of a cube with the mean edge length
+///   is rejected by index (InputError: it would make the stiffness matrix singular);
+/// - a tet with negative volume is reoriented (corners 1 and 2 swapped, and for Tet10 the
+///   mid-edge nodes that go with them); each one is counted and one warning line is written.
+///
+/// @param mesh     the mesh, changed in place when tets are reoriented
+/// @param file     the file name used in messages
+/// @param warnings where the one-line warning goes (may be nullptr to stay quiet)
+/// @return the number of tets that were reoriented
+int check_tet_mesh(TetMesh& mesh, const std::string& file, std::ostream* warnings);
+
+/// Signed volume of the tet spanned by the first four nodes of row `t`: det[x1-x0, x2-x0, x3-x0] / 6.
+double signed_tet_volume(const TetMesh& mesh, Eigen::Index t);
+
+} // namespace kerf

@@ -1,0 +1,92 @@
+/// @file scene.hpp
+/// @brief The scene file (JSON): the user's description of a problem, read and validated.
+#pragma once
+
+#include "kerf/fem/linear_material.hpp"
+#include "kerf/mesh/node_region.hpp"
+#include "kerf/solve/linear_solver.hpp"
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kerf {
+
+/// Where the mesh comes from: the box mesher or a file, and at which order.
+struct MeshSpec {
+  bool is_box = true;                  ///< true: "box"; false: "file"
+  Eigen::Vector3d box_min{0, 0, 0};    ///< box lower corner (m)
+  Eigen::Vector3d box_max{1, 1, 1};    ///< box upper corner (m)
+  Eigen::Vector3i box_cells{1, 1, 1};  ///< hex cells along x, y, z (each split into 6 tets)
+  std::filesystem::path file;          ///< mesh file, resolved against the scene's folder
+  double scale = 1.0;                  ///< factor applied to the file's coordinates (to metres)
+  int order = 1;                       ///< 1: Tet4, 2: Tet10 (mid-edge nodes added by Kerf)
+};
+
+/// u = displacement on the nodes of region.
+struct DirichletSpec {
+  NodeRegion region;
+  Eigen::Vector3d displacement{0, 0, 0}; ///< m
+};
+
+/// A total force spread uniformly by area over the boundary faces inside region.
+struct TractionSpec {
+  NodeRegion region;
+  Eigen::Vector3d total_force{0, 0, 0}; ///< N
+};
+
+/// A cut: a rectangle (origin + two edges) or a triangle-mesh surface (chapter 3 on).
+struct CutSpec {
+  bool is_rectangle = true;
+  Eigen::Vector3d origin{0, 0, 0}, edge1{0, 0, 0}, edge2{0, 0, 0}; ///< m
+  std::filesystem::path surface;                                    ///< triangle mesh file
+};
+
+/// Time integration: "static", or "newmark" with its parameters (chapter 6 on).
+struct TimeSpec {
+  std::string integrator = "static";
+  double dt = 0.0;                          ///< s
+  int steps = 0;
+  double beta = 0.25, gamma = 0.5;          ///< Newmark parameters
+  Eigen::Vector2d rayleigh{0.0, 0.0};       ///< damping D = alpha M + beta K
+};
+
+/// Everything a scene file says. Defaults are those of the book's scene reference page.
+struct Scene {
+  std::string name = "scene";            ///< used for output file names
+  std::filesystem::path source;          ///< the file it was read from (for messages)
+  MeshSpec mesh;
+  LinearMaterial material;
+  std::string model = "linear";          ///< "linear" or "corotational"
+  std::vector<DirichletSpec> dirichlet;
+  Eigen::Vector3d gravity{0, 0, 0};      ///< m/s^2
+  std::vector<TractionSpec> traction;
+  std::vector<CutSpec> cuts;
+  TimeSpec time;
+  int output_every = 1;                  ///< write every n-th step
+  SolverSettings solver;
+};
+
+/// Reads and validates a scene file. Every problem (bad JSON, unknown field, wrong type, value
+/// out of range, missing mesh file) is an InputError naming the file and the field path, e.g.
+/// `beam.json: material.poisson: expected a number in (-1, 0.5), got 0.5`.
+Scene read_scene_file(const std::filesystem::path& file);
+
+/// The same from JSON text; `source` names it in messages and relative paths are resolved
+/// against `base_directory`.
+Scene parse_scene(const std::string& json_text, const std::filesystem::path& source,
+                  const std::filesystem::path& base_directory);
+
+/// What a chapter has taught so far; a scene asking for more is rejected with a message that
+/// says which chapter teaches it.
+struct SceneFeatures {
+  bool corotational = false;
+  bool cuts = false;
+  bool dynamics = false;
+};
+
+/// Throws InputError if `scene` needs a method that is not in `taught`.
+void require_features(const Scene& scene, const SceneFeatures& taught);
+
+} // namespace kerf

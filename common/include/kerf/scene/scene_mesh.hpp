@@ -1,0 +1,23 @@
+/// @file scene_mesh.hpp
+/// @brief Build the mesh a scene asks for, and turn its regions into checked node lists.
+#pragma once
+
+#include "kerf/mesh/tet_mesh.hpp"
+#include "kerf/scene/scene.hpp"
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace kerf {
+
+/// The scene's mesh: the box mesher or a file (scaled), promoted to Tet10 when order is 2.
+/// File problems are InputErrors naming the mesh file; warnings (reoriented tets) go to `warnings`.
+TetMesh make_scene_mesh(const Scene& scene, std::ostream* warnings);
+
+/// The nodes of `region` in `mesh`, as nodes_in_region does, but a node index past the mesh
+/// or a region with no node is an InputError naming the scene file and `field`.
+std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, const NodeRegion& region,
+                                    const std::string& field);
+
+} // namespace kerf

@@ -1,0 +1,51 @@
+#include "kerf/app/command_line.hpp"
+
+#include "kerf/app/input_error.hpp"
+
+#include <exception>
+#include <iostream>
+#include <string_view>
+
+namespace kerf {
+
+CommandLine parse_command_line(int argc, const char* const* argv) {
+  CommandLine options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw InputError("command line", std::string(arg), "expected a value after it");
+      return argv[++i];
+    };
+    if (arg == "--scene") options.scene = value();
+    else if (arg == "--probes") options.probes_in = value();
+    else if (arg == "--probes-out") options.probes_out = value();
+    else if (arg == "--out") options.out_dir = value();
+    else if (arg == "--quiet") options.quiet = true;
+    else if (arg == "--help" || arg == "-h") options.help = true;
+    else throw InputError("command line", std::string(arg), "unknown option (see --help)");
+  }
+  if (options.probes_in.has_value() != options.probes_out.has_value())
+    throw InputError("command line", "--probes", "--probes and --probes-out go together");
+  return options;
+}
+
+int run_guarded(int argc, const char* const* argv, const std::string& program, const std::string& usage,
+                const std::function<void(const CommandLine&)>& body) {
+  try {
+    const CommandLine options = parse_command_line(argc, argv);
+    if (options.help) {
+      std::cout << usage;
+      return 0;
+    }
+    body(options);
+    return 0;
+  } catch (const InputError& error) {
+    std::cerr << program << ": error: " << error.what() << '\n';
+    return 2;
+  } catch (const std::exception& error) {
+    std::cerr << program << ": failed: " << error.what() << '\n';
+    return 3;
+  }
+}
+
+} // namespace kerf

@@ -1,0 +1,85 @@
+#include "kerf/io/probes_csv.hpp"
+
+#include "kerf/app/input_error.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace kerf {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto begin = s.find_first_not_of(" \t\r");
+  if (begin == std::string::npos) return "";
+  const auto end = s.find_last_not_of(" \t\r");
+  return s.substr(begin, end - begin + 1);
+}
+
+} // namespace
+
+Eigen::MatrixXd read_probes_csv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), "file", "cannot open the probe file");
+  std::string line;
+  int line_number = 0;
+  std::string header;
+  while (header.empty() && std::getline(in, line)) {
+    ++line_number;
+    header = trim(line);
+  }
+  std::string compact;
+  for (char c : header)
+    if (c != ' ' && c != '\t') compact += c;
+  if (compact != "x,y,z") throw InputError(file.string(), "line " + std::to_string(line_number), "expected the header x,y,z");
+  std::vector<Eigen::Vector3d> points;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (trim(line).empty()) continue;
+    std::stringstream row(line);
+    std::string cell;
+    Eigen::Vector3d x;
+    int count = 0;
+    while (std::getline(row, cell, ',')) {
+      cell = trim(cell);
+      std::size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(cell, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != cell.size() || !std::isfinite(value) || count >= 3)
+        throw InputError(file.string(), "line " + std::to_string(line_number), "expected three finite numbers x,y,z");
+      x[count++] = value;
+    }
+    if (count != 3) throw InputError(file.string(), "line " + std::to_string(line_number), "expected three finite numbers x,y,z");
+    points.push_back(x);
+  }
+  Eigen::MatrixXd result(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t p = 0; p < points.size(); ++p) result.row(static_cast<Eigen::Index>(p)) = points[p].transpose();
+  return result;
+}
+
+void write_probes_csv(const std::filesystem::path& file, const Eigen::MatrixXd& points, const Eigen::MatrixXd& displacements) {
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  std::FILE* out = std::fopen(file.string().c_str(), "w");
+  if (!out) throw InputError(file.string(), "file", "cannot write the probe output");
+  std::fprintf(out, "x,y,z,ux,uy,uz\n");
+  for (Eigen::Index p = 0; p < points.rows(); ++p) {
+    for (int c = 0; c < 3; ++c) std::fprintf(out, "%.17g,", points(p, c));
+    for (int c = 0; c < 3; ++c) {
+      const double v = displacements(p, c);
+      if (std::isnan(v)) std::fprintf(out, "nan");
+      else std::fprintf(out, "%.17g", v);
+      std::fprintf(out, c < 2 ? "," : "\n");
+    }
+  }
+  if (std::fclose(out) != 0) throw InputError(file.string(), "file", "cannot write the probe output");
+}
+
+} // namespace kerf

@@ -1,0 +1,68 @@
+#include "kerf/mesh/boundary_faces.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <map>
+
+namespace kerf {
+
+namespace {
+
+// The face opposite corner a, listed so that its normal points away from corner a when the
+// tet is positively oriented (see check_tet_mesh.hpp).
+constexpr int outward_face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+// The local Tet10 node on the edge between corners i and j (see tet_edge_corners).
+int tet10_edge_node(int i, int j) {
+  for (int e = 0; e < 6; ++e)
+    if ((tet_edge_corners[e][0] == i && tet_edge_corners[e][1] == j) ||
+        (tet_edge_corners[e][0] == j && tet_edge_corners[e][1] == i))
+      return 4 + e;
+  return -1;
+}
+
+} // namespace
+
+BoundaryFaces boundary_faces(const TetMesh& mesh) {
+  // A face seen twice is interior. std::map on the sorted corner triple keeps this simple and
+  // deterministic; it runs once per mesh.
+  std::map<std::array<int, 3>, std::pair<int, int>> seen; // key -> (tet, local face), tet = -1 once shared
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
+    for (int a = 0; a < 4; ++a) {
+      std::array<int, 3> key;
+      for (int c = 0; c < 3; ++c) key[c] = mesh.tets(t, outward_face_corners[a][c]);
+      std::sort(key.begin(), key.end());
+      auto [it, inserted] = seen.try_emplace(key, static_cast<int>(t), a);
+      if (!inserted) it->second.first = -1;
+    }
+
+  BoundaryFaces boundary;
+  const int nodes_per_face = mesh.order() == 2 ? 6 : 3;
+  std::vector<std::array<int, 6>> rows;
+  for (const auto& [key, owner] : seen) {
+    const auto [t, a] = owner;
+    if (t < 0) continue;
+    std::array<int, 6> row{};
+    for (int c = 0; c < 3; ++c) row[c] = mesh.tets(t, outward_face_corners[a][c]);
+    if (nodes_per_face == 6)
+      for (int c = 0; c < 3; ++c)
+        row[3 + c] = mesh.tets(t, tet10_edge_node(outward_face_corners[a][c], outward_face_corners[a][(c + 1) % 3]));
+    rows.push_back(row);
+    boundary.tet.push_back(t);
+    boundary.local_face.push_back(a);
+  }
+  boundary.faces.resize(static_cast<Eigen::Index>(rows.size()), nodes_per_face);
+  for (std::size_t f = 0; f < rows.size(); ++f)
+    for (int c = 0; c < nodes_per_face; ++c) boundary.faces(static_cast<Eigen::Index>(f), c) = rows[f][c];
+  return boundary;
+}
+
+double face_area(const TetMesh& mesh, const BoundaryFaces& boundary, Eigen::Index f) {
+  const Eigen::Vector3d x0 = mesh.nodes.row(boundary.faces(f, 0)).transpose();
+  const Eigen::Vector3d x1 = mesh.nodes.row(boundary.faces(f, 1)).transpose();
+  const Eigen::Vector3d x2 = mesh.nodes.row(boundary.faces(f, 2)).transpose();
+  return 0.5 * (x1 - x0).cross(x2 - x0).norm();
+}
+
+} // namespace kerf

@@ -1,0 +1,324 @@
+#include "kerf/scene/scene.hpp"
+
+#include "kerf/app/input_error.hpp"
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+namespace kerf {
+
+namespace {
+
+using nlohmann::json;
+
+std::string type_name(const json& value) { return value.is_number() ? "a number" : std::string("a ") + value.type_name(); }
+
+/// Reads one JSON object field by field, checking types, ranges and unknown keys, and names
+/// every problem by its path in the file ("traction[1].region.box.min").
+class ObjectReader {
+public:
+  ObjectReader(const json& object, std::string path, const std::string& file) : object_(object), path_(std::move(path)), file_(file) {
+    if (!object_.is_object()) fail(path_, "expected an object, got " + type_name(object_));
+  }
+
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    throw InputError(file_, field.empty() ? "(top level)" : field, problem);
+  }
+
+  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  /// Unknown keys are errors: a typo such as "poison" must not silently fall back to a default.
+  void allow_only(std::initializer_list<const char*> keys) const {
+    for (const auto& item : object_.items()) {
+      bool known = false;
+      std::string list;
+      for (const char* k : keys) {
+        known = known || item.key() == k;
+        list += std::string(list.empty() ? "" : ", ") + k;
+      }
+      if (!known) fail(field(item.key()), "unknown field (expected one of: " + list + ")");
+    }
+  }
+
+  bool has(const std::string& key) const { return object_.contains(key); }
+  const json& at(const std::string& key) const {
+    if (!has(key)) fail(field(key), "required field is missing");
+    return object_.at(key);
+  }
+
+  double number(const std::string& key, double fallback) const {
+    if (!has(key)) return fallback;
+    return as_number(object_.at(key), field(key));
+  }
+  double as_number(const json& value, const std::string& name) const {
+    if (!value.is_number()) fail(name, "expected a number, got " + type_name(value));
+    const double x = value.get<double>();
+    if (!std::isfinite(x)) fail(name, "expected a finite number");
+    return x;
+  }
+  int integer(const std::string& key, int fallback) const {
+    if (!has(key)) return fallback;
+    const json& value = object_.at(key);
+    if (!value.is_number_integer()) fail(field(key), "expected an integer, got " + type_name(value));
+    return value.get<int>();
+  }
+  std::string text(const std::string& key, const std::string& fallback) const {
+    if (!has(key)) return fallback;
+    const json& value = object_.at(key);
+    if (!value.is_string()) fail(field(key), "expected a string, got " + type_name(value));
+    return value.get<std::string>();
+  }
+  template <int n>
+  Eigen::Matrix<double, n, 1> vector(const std::string& key, const Eigen::Matrix<double, n, 1>& fallback) const {
+    if (!has(key)) return fallback;
+    const json& value = object_.at(key);
+    if (!value.is_array() || value.size() != n)
+      fail(field(key), "expected an array of " + std::to_string(n) + " numbers");
+    Eigen::Matrix<double, n, 1> v;
+    for (int i = 0; i < n; ++i) v[i] = as_number(value[static_cast<std::size_t>(i)], field(key) + "[" + std::to_string(i) + "]");
+    return v;
+  }
+  const json& array(const std::string& key) const {
+    const json& value = at(key);
+    if (!value.is_array()) fail(field(key), "expected an array, got " + type_name(value));
+    return value;
+  }
+
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+
+private:
+  const json& object_;
+  std::string path_;
+  const std::string& file_;
+};
+
+NodeRegion read_region(const json& value, const std::string& path, const std::string& file) {
+  ObjectReader r(value, path, file);
+  r.allow_only({"box", "nodes"});
+  NodeRegion region;
+  if (r.has("box") == r.has("nodes")) r.fail(path, "expected exactly one of \"box\" or \"nodes\"");
+  if (r.has("box")) {
+    ObjectReader box(r.at("box"), r.field("box"), file);
+    box.allow_only({"min", "max"});
+    box.at("min");
+    box.at("max");
+    region.box_min = box.vector<3>("min", Eigen::Vector3d::Zero());
+    region.box_max = box.vector<3>("max", Eigen::Vector3d::Zero());
+    if ((region.box_max.array() < region.box_min.array()).any()) box.fail(box.field("max"), "expected max >= min in x, y and z");
+  } else {
+    region.is_box = false;
+    const json& nodes = r.array("nodes");
+    if (nodes.empty()) r.fail(r.field("nodes"), "expected at least one node index");
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      if (!nodes[i].is_number_integer() || nodes[i].get<long long>() < 0)
+        r.fail(r.field("nodes") + "[" + std::to_string(i) + "]", "expected a non-negative integer node index");
+      region.node_list.push_back(nodes[i].get<int>());
+    }
+  }
+  return region;
+}
+
+MeshSpec read_mesh(const ObjectReader& scene, const std::filesystem::path& base) {
+  ObjectReader r(scene.at("mesh"), "mesh", scene.file());
+  r.allow_only({"box", "file", "order", "scale"});
+  MeshSpec mesh;
+  if (r.has("box") == r.has("file")) r.fail("mesh", "expected exactly one of \"box\" or \"file\"");
+  if (r.has("box")) {
+    ObjectReader box(r.at("box"), "mesh.box", scene.file());
+    box.allow_only({"min", "max", "cells"});
+    box.at("min");
+    box.at("max");
+    box.at("cells");
+    mesh.box_min = box.vector<3>("min", Eigen::Vector3d::Zero());
+    mesh.box_max = box.vector<3>("max", Eigen::Vector3d::Zero());
+    if ((mesh.box_max.array() <= mesh.box_min.array()).any()) box.fail("mesh.box.max", "expected max > min in x, y and z");
+    const json& cells = box.at("cells");
+    if (!cells.is_array() || cells.size() != 3) box.fail("mesh.box.cells", "expected an array of 3 positive integers");
+    for (int i = 0; i < 3; ++i) {
+      const json& c = cells[static_cast<std::size_t>(i)];
+      if (!c.is_number_integer() || c.get<long long>() < 1 || c.get<long long>() > 100000)
+        box.fail("mesh.box.cells[" + std::to_string(i) + "]", "expected a positive integer (at most 100000)");
+      mesh.box_cells[i] = c.get<int>();
+    }
+  } else {
+    mesh.is_box = false;
+    const std::filesystem::path file = r.text("file", "");
+    if (file.empty()) r.fail("mesh.file", "expected a non-empty path");
+    mesh.file = file.is_absolute() ? file : base / file;
+    mesh.scale = r.number("scale", 1.0);
+    if (!(mesh.scale > 0.0)) r.fail("mesh.scale", "expected a positive number");
+  }
+  if (r.has("scale") && mesh.is_box) r.fail("mesh.scale", "only meaningful with \"file\"");
+  mesh.order = r.integer("order", 1);
+  if (mesh.order != 1 && mesh.order != 2) r.fail("mesh.order", "expected 1 (Tet4) or 2 (Tet10)");
+  return mesh;
+}
+
+} // namespace
+
+Scene parse_scene(const std::string& json_text, const std::filesystem::path& source, const std::filesystem::path& base) {
+  const std::string file = source.string();
+  json document;
+  try {
+    document = json::parse(json_text);
+  } catch (const json::parse_error& error) {
+    // nlohmann's message names the byte offset; keep it to one line.
+    std::string what = error.what();
+    for (char& c : what)
+      if (c == '\n') c = ' ';
+    throw InputError(file, "JSON", what);
+  }
+  ObjectReader r(document, "", file);
+  r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "time", "output", "solver"});
+
+  Scene scene;
+  scene.source = source;
+  scene.name = r.text("name", source.stem().string());
+  scene.mesh = read_mesh(r, base);
+
+  if (r.has("material")) {
+    ObjectReader m(r.at("material"), "material", file);
+    m.allow_only({"young", "poisson", "density"});
+    scene.material.young = m.number("young", scene.material.young);
+    scene.material.poisson = m.number("poisson", scene.material.poisson);
+    scene.material.density = m.number("density", scene.material.density);
+    if (!(scene.material.young > 0.0)) m.fail("material.young", "expected a positive number (Pa)");
+    if (!(scene.material.poisson > -1.0 && scene.material.poisson < 0.5))
+      m.fail("material.poisson", "expected a number in (-1, 0.5)");
+    if (!(scene.material.density >= 0.0)) m.fail("material.density", "expected a non-negative number (kg/m^3)");
+  }
+
+  scene.model = r.text("model", "linear");
+  if (scene.model != "linear" && scene.model != "corotational")
+    r.fail("model", "expected \"linear\" or \"corotational\", got \"" + scene.model + "\"");
+
+  if (r.has("dirichlet")) {
+    const json& list = r.array("dirichlet");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string path = "dirichlet[" + std::to_string(i) + "]";
+      ObjectReader d(list[i], path, file);
+      d.allow_only({"region", "displacement"});
+      DirichletSpec spec;
+      spec.region = read_region(d.at("region"), path + ".region", file);
+      spec.displacement = d.vector<3>("displacement", Eigen::Vector3d::Zero());
+      scene.dirichlet.push_back(spec);
+    }
+  }
+
+  scene.gravity = r.vector<3>("gravity", Eigen::Vector3d::Zero());
+
+  if (r.has("traction")) {
+    const json& list = r.array("traction");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string path = "traction[" + std::to_string(i) + "]";
+      ObjectReader t(list[i], path, file);
+      t.allow_only({"region", "total_force"});
+      TractionSpec spec;
+      spec.region = read_region(t.at("region"), path + ".region", file);
+      t.at("total_force");
+      spec.total_force = t.vector<3>("total_force", Eigen::Vector3d::Zero());
+      scene.traction.push_back(spec);
+    }
+  }
+
+  if (r.has("cuts")) {
+    const json& list = r.array("cuts");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string path = "cuts[" + std::to_string(i) + "]";
+      ObjectReader c(list[i], path, file);
+      c.allow_only({"rectangle", "surface"});
+      CutSpec spec;
+      if (c.has("rectangle") == c.has("surface")) c.fail(path, "expected exactly one of \"rectangle\" or \"surface\"");
+      if (c.has("rectangle")) {
+        ObjectReader rect(c.at("rectangle"), path + ".rectangle", file);
+        rect.allow_only({"origin", "edge1", "edge2"});
+        rect.at("origin");
+        rect.at("edge1");
+        rect.at("edge2");
+        spec.origin = rect.vector<3>("origin", Eigen::Vector3d::Zero());
+        spec.edge1 = rect.vector<3>("edge1", Eigen::Vector3d::Zero());
+        spec.edge2 = rect.vector<3>("edge2", Eigen::Vector3d::Zero());
+        if (spec.edge1.cross(spec.edge2).norm() == 0.0)
+          rect.fail(path + ".rectangle.edge2", "expected edge1 and edge2 to span a rectangle (they are parallel or zero)");
+      } else {
+        spec.is_rectangle = false;
+        const std::filesystem::path surface = c.text("surface", "");
+        if (surface.empty()) c.fail(path + ".surface", "expected a non-empty path");
+        spec.surface = surface.is_absolute() ? surface : base / surface;
+      }
+      scene.cuts.push_back(spec);
+    }
+  }
+
+  if (r.has("time")) {
+    ObjectReader t(r.at("time"), "time", file);
+    t.allow_only({"integrator", "dt", "steps", "beta", "gamma", "rayleigh"});
+    scene.time.integrator = t.text("integrator", "static");
+    if (scene.time.integrator == "static") {
+      for (const char* key : {"dt", "steps", "beta", "gamma", "rayleigh"})
+        if (t.has(key)) t.fail(t.field(key), "only meaningful with a dynamic integrator");
+    } else if (scene.time.integrator == "newmark") {
+      t.at("dt");
+      t.at("steps");
+      scene.time.dt = t.number("dt", 0.0);
+      scene.time.steps = t.integer("steps", 0);
+      scene.time.beta = t.number("beta", 0.25);
+      scene.time.gamma = t.number("gamma", 0.5);
+      scene.time.rayleigh = t.vector<2>("rayleigh", Eigen::Vector2d::Zero());
+      if (!(scene.time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
+      if (scene.time.steps < 1) t.fail("time.steps", "expected a positive integer");
+      if (!(scene.time.beta > 0.0 && scene.time.beta <= 0.5)) t.fail("time.beta", "expected a number in (0, 0.5]");
+      if (!(scene.time.gamma >= 0.0 && scene.time.gamma <= 1.0)) t.fail("time.gamma", "expected a number in [0, 1]");
+      if ((scene.time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
+    } else {
+      t.fail("time.integrator", "expected \"static\" or \"newmark\", got \"" + scene.time.integrator + "\"");
+    }
+  }
+
+  if (r.has("output")) {
+    ObjectReader o(r.at("output"), "output", file);
+    o.allow_only({"every"});
+    scene.output_every = o.integer("every", 1);
+    if (scene.output_every < 1) o.fail("output.every", "expected a positive integer");
+  }
+
+  if (r.has("solver")) {
+    ObjectReader s(r.at("solver"), "solver", file);
+    s.allow_only({"type", "tolerance", "max_iterations"});
+    scene.solver.type = s.text("type", "cholmod");
+    scene.solver.tolerance = s.number("tolerance", scene.solver.tolerance);
+    scene.solver.max_iterations = s.integer("max_iterations", scene.solver.max_iterations);
+    const auto& type = scene.solver.type;
+    if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol")
+      s.fail("solver.type", "expected \"cholmod\", \"ldlt\", \"cg-jacobi\" or \"cg-ichol\", got \"" + type + "\"");
+    if (!(scene.solver.tolerance > 0.0 && scene.solver.tolerance < 1.0)) s.fail("solver.tolerance", "expected a number in (0, 1)");
+    if (scene.solver.max_iterations < 1) s.fail("solver.max_iterations", "expected a positive integer");
+  }
+  return scene;
+}
+
+Scene read_scene_file(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), "file", "cannot open the scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), file, file.parent_path());
+}
+
+void require_features(const Scene& scene, const SceneFeatures& taught) {
+  const std::string file = scene.source.string();
+  if (scene.model == "corotational" && !taught.corotational)
+    throw InputError(file, "model", "\"corotational\" is taught from chapter 2 on (02_corotation)");
+  if (!scene.cuts.empty() && !taught.cuts)
+    throw InputError(file, "cuts", "cuts are taught from chapter 3 on (03_xfem_heaviside)");
+  if (scene.time.integrator != "static" && !taught.dynamics)
+    throw InputError(file, "time.integrator", "\"" + scene.time.integrator + "\" is taught from chapter 6 on (06_newmark)");
+}
+
+} // namespace kerf
