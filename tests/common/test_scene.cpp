@@ -1,0 +1,129 @@
+// The scene file: a full scene is read with every field; every malformed variant is an
+// InputError whose one-line message names the file and the field.
+#include "kerf/app/input_error.hpp"
+#include "kerf/scene/scene.hpp"
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+namespace {
+
+const char* full_scene = R"({
+  "name": "full",
+  "mesh": {"file": "beam.msh", "order": 2, "scale": 0.001},
+  "material": {"young": 5000, "poisson": 0.45, "density": 1000},
+  "model": "corotational",
+  "dirichlet": [{"region": {"box": {"min": [0, 0, 0], "max": [1, 1, 0]}}, "displacement": [0, 0, 0.01]},
+                {"region": {"nodes": [3, 39, 64]}}],
+  "gravity": [0, -9.81, 0],
+  "traction": [{"region": {"box": {"min": [0, 0, 1], "max": [1, 1, 1]}}, "total_force": [0, 0, -2]}],
+  "cuts": [{"rectangle": {"origin": [0, 0, 0.1], "edge1": [0.015, 0, 0], "edge2": [0, 0.06, 0]}}, {"surface": "cut.obj"}],
+  "time": {"integrator": "newmark", "dt": 0.01, "steps": 100, "rayleigh": [0.1, 0.01]},
+  "output": {"every": 5},
+  "solver": {"type": "cg-ichol", "tolerance": 1e-8, "max_iterations": 500}
+})";
+
+// Parses `text` and returns the error message, or "" if it parsed.
+std::string error_of(const std::string& text) {
+  try {
+    kerf::parse_scene(text, "scene.json", "/data");
+  } catch (const kerf::InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+const std::string box_mesh = R"("mesh": {"box": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}})";
+
+} // namespace
+
+TEST_CASE("a full scene is read field by field") {
+  const kerf::Scene scene = kerf::parse_scene(full_scene, "full.json", "/data");
+  CHECK(scene.name == "full");
+  CHECK_FALSE(scene.mesh.is_box);
+  CHECK(scene.mesh.file == std::filesystem::path("/data/beam.msh"));
+  CHECK(scene.mesh.order == 2);
+  CHECK(scene.mesh.scale == 0.001);
+  CHECK(scene.material.poisson == 0.45);
+  CHECK(scene.model == "corotational");
+  REQUIRE(scene.dirichlet.size() == 2);
+  CHECK(scene.dirichlet[0].displacement.z() == 0.01);
+  CHECK(scene.dirichlet[1].region.node_list == std::vector<int>{3, 39, 64});
+  CHECK(scene.dirichlet[1].displacement.isZero());
+  CHECK(scene.gravity.y() == -9.81);
+  CHECK(scene.traction[0].total_force.z() == -2.0);
+  REQUIRE(scene.cuts.size() == 2);
+  CHECK(scene.cuts[0].edge1.x() == 0.015);
+  CHECK(scene.cuts[1].surface == std::filesystem::path("/data/cut.obj"));
+  CHECK(scene.time.integrator == "newmark");
+  CHECK(scene.time.steps == 100);
+  CHECK(scene.time.beta == 0.25);
+  CHECK(scene.output_every == 5);
+  CHECK(scene.solver.type == "cg-ichol");
+}
+
+TEST_CASE("defaults: the paper's material, linear, static, CHOLMOD") {
+  const kerf::Scene scene = kerf::parse_scene("{" + box_mesh + "}", "min.json", ".");
+  CHECK(scene.name == "min");
+  CHECK(scene.material.young == 300e3);
+  CHECK(scene.material.poisson == 0.35);
+  CHECK(scene.material.density == 1070.0);
+  CHECK(scene.model == "linear");
+  CHECK(scene.time.integrator == "static");
+  CHECK(scene.solver.type == "cholmod");
+  CHECK(scene.mesh.order == 1);
+}
+
+TEST_CASE("every malformed scene names the file and the field on one line") {
+  struct Case {
+    std::string text, field;
+  };
+  const std::string m = box_mesh;
+  const Case cases[] = {
+      {R"({"mesh": {"box": )", "JSON"},                                                           // truncated
+      {"{" + m + R"(, "materal": {}})", "materal"},                                                 // unknown field (typo)
+      {"{" + m + R"(, "material": {"young": "soft"}})", "material.young"},                           // wrong type
+      {"{" + m + R"(, "material": {"poisson": 0.5}})", "material.poisson"},                          // out of range
+      {"{" + m + R"(, "material": {"young": -1}})", "material.young"},
+      {"{" + m + R"(, "material": {"poison": 0.3}})", "material.poison"},                            // typo inside
+      {R"({"material": {}})", "mesh"},                                                                // missing mesh
+      {R"({"mesh": {"box": {"min": [0,0,0], "max": [1,1,1], "cells": [1, 0, 1]}}})", "mesh.box.cells[1]"},
+      {R"({"mesh": {"box": {"min": [0,0,0], "max": [1,0,1], "cells": [1, 1, 1]}}})", "mesh.box.max"},
+      {R"({"mesh": {"box": {"min": [0,0], "max": [1,1,1], "cells": [1, 1, 1]}}})", "mesh.box.min"},
+      {R"({"mesh": {"file": "a.msh", "order": 3}})", "mesh.order"},
+      {R"({"mesh": {"file": "a.msh", "box": {}}})", "mesh"},
+      {"{" + m + R"(, "model": "hyperelastic"})", "model"},
+      {"{" + m + R"(, "dirichlet": {"region": {}}})", "dirichlet"},
+      {"{" + m + R"(, "dirichlet": [{"region": {"sphere": 1}}]})", "dirichlet[0].region.sphere"},
+      {"{" + m + R"(, "dirichlet": [{"region": {"nodes": [1, -2]}}]})", "dirichlet[0].region.nodes[1]"},
+      {"{" + m + R"(, "dirichlet": [{"displacement": [0, 0, 0]}]})", "dirichlet[0].region"},
+      {"{" + m + R"(, "gravity": [0, 0, "down"]})", "gravity[2]"},
+      {"{" + m + R"(, "traction": [{"region": {"nodes": [1]}}]})", "traction[0].total_force"},
+      {"{" + m + R"(, "cuts": [{"rectangle": {"origin": [0,0,0], "edge1": [1,0,0], "edge2": [2,0,0]}}]})", "cuts[0].rectangle.edge2"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0, "steps": 10}})", "time.dt"},
+      {"{" + m + R"(, "time": {"integrator": "euler"}})", "time.integrator"},
+      {"{" + m + R"(, "time": {"integrator": "static", "dt": 0.1}})", "time.dt"},
+      {"{" + m + R"(, "output": {"every": 0}})", "output.every"},
+      {"{" + m + R"(, "solver": {"type": "umfpack"}})", "solver.type"},
+      {"[1, 2, 3]", "(top level)"},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.text);
+    const std::string message = error_of(c.text);
+    REQUIRE_FALSE(message.empty());
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.rfind("scene.json: " + c.field + ": ", 0) == 0);
+  }
+}
+
+TEST_CASE("a chapter refuses the methods it has not taught yet") {
+  const kerf::Scene scene = kerf::parse_scene(full_scene, "full.json", "/data");
+  CHECK_THROWS_WITH_AS(kerf::require_features(scene, {}), doctest::Contains("chapter 2"), kerf::InputError);
+  CHECK_THROWS_WITH_AS(kerf::require_features(scene, {true, false, true}), doctest::Contains("chapter 3"), kerf::InputError);
+  CHECK_NOTHROW(kerf::require_features(scene, {true, true, true}));
+}
+
+TEST_CASE("a scene file that does not exist is an InputError naming it") {
+  CHECK_THROWS_WITH_AS(kerf::read_scene_file("no/such/scene.json"), doctest::Contains("no/such/scene.json"), kerf::InputError);
+}
