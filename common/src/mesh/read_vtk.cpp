@@ -1,0 +1,166 @@
+#include "kerf/mesh/read_vtk.hpp"
+
+#include "kerf/app/input_error.hpp"
+#include "kerf/mesh/check_tet_mesh.hpp"
+
+#include <vtkAlgorithm.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
+#include <vtkCommand.h>
+#include <vtkExecutive.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace kerf {
+namespace {
+
+/// Listens to a VTK object's error and warning events. VTK reports problems this way instead
+/// of throwing; with an observer attached, VTK hands the message to us instead of printing it.
+class VtkMessageCatcher : public vtkCommand {
+public:
+  /// VTK's factory function, which vtkNew calls.
+  static VtkMessageCatcher* New() { return new VtkMessageCatcher; }
+
+  /// Keeps the first error and every warning, each cut down to one line.
+  void Execute(vtkObject* /*caller*/, unsigned long event, void* call_data) override {
+    const std::string text = one_line(static_cast<const char*>(call_data));
+    if (event == vtkCommand::ErrorEvent && error.empty()) error = text;
+    if (event == vtkCommand::WarningEvent) warnings.push_back(text);
+  }
+
+  std::string error;                 ///< the first error, empty if none
+  std::vector<std::string> warnings; ///< every warning, in order
+
+private:
+  /// VTK's messages start with "ClassName (0x1234): " and span lines; we keep the words.
+  static std::string one_line(const char* message) {
+    std::string text = message ? message : "";
+    if (const auto colon = text.find("): "); colon != std::string::npos) text.erase(0, colon + 3);
+    std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+    const auto last = text.find_last_not_of(' ');
+    return last == std::string::npos ? std::string() : text.substr(0, last + 1);
+  }
+};
+
+/// Runs a reader and returns its grid, turning the error events `catcher` hears into an InputError.
+vtkSmartPointer<vtkUnstructuredGrid> run_reader(vtkAlgorithm& reader, VtkMessageCatcher& catcher,
+                                                const std::string& file, std::ostream* warnings) {
+  // Errors come from the reader and, when the reader fails, from the pipeline executive that
+  // ran it ("Algorithm ... returned failure"): we listen to both.
+  reader.AddObserver(vtkCommand::ErrorEvent, &catcher);
+  reader.AddObserver(vtkCommand::WarningEvent, &catcher);
+  reader.GetExecutive()->AddObserver(vtkCommand::ErrorEvent, &catcher);
+  reader.GetExecutive()->AddObserver(vtkCommand::WarningEvent, &catcher);
+  reader.Update();
+  if (warnings)
+    for (const auto& warning : catcher.warnings)
+      *warnings << "warning: " << file << ": " << warning << "\n";
+  if (!catcher.error.empty()) throw InputError(file, "VTK reader", catcher.error);
+  if (reader.GetErrorCode() != 0)
+    throw InputError(file, "VTK reader", "the file could not be read (VTK error code " +
+                                             std::to_string(reader.GetErrorCode()) + ")");
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(reader.GetOutputDataObject(0));
+  if (!grid) throw InputError(file, "VTK reader", "the file holds no unstructured grid");
+  return grid;
+}
+
+/// Copies the points and the tetrahedra of a VTK grid into a TetMesh.
+TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
+  TetMesh mesh;
+  if (!grid.GetPoints() || grid.GetNumberOfPoints() == 0)
+    throw InputError(file, "points", "the file has no points");
+  mesh.nodes.resize(grid.GetNumberOfPoints(), 3);
+  for (vtkIdType v = 0; v < grid.GetNumberOfPoints(); ++v) {
+    double x[3];
+    grid.GetPoint(v, x);
+    mesh.nodes.row(v) << x[0], x[1], x[2];
+  }
+
+  // First pass: decide which cells to keep and check that they are all of one order.
+  std::vector<vtkIdType> kept;
+  int kept_type = VTK_EMPTY_CELL;
+  vtkNew<vtkGenericCell> cell;
+  for (vtkIdType c = 0; c < grid.GetNumberOfCells(); ++c) {
+    const int type = grid.GetCellType(c);
+    if (type == VTK_TETRA || type == VTK_QUADRATIC_TETRA) {
+      if (kept_type != VTK_EMPTY_CELL && kept_type != type)
+        throw InputError(file, "cell " + std::to_string(c),
+                         "the mesh mixes VTK_TETRA and VTK_QUADRATIC_TETRA; Kerf needs one order");
+      kept_type = type;
+      kept.push_back(c);
+      continue;
+    }
+    grid.GetCell(c, cell);
+    if (type != VTK_EMPTY_CELL && cell->GetCellDimension() == 3)
+      throw InputError(file, "cell " + std::to_string(c),
+                       std::string("cell type ") + vtkCellTypes::GetClassNameFromTypeId(type) +
+                           " is not supported; Kerf reads VTK_TETRA and VTK_QUADRATIC_TETRA");
+  }
+
+  const int per_tet = kept_type == VTK_QUADRATIC_TETRA ? 10 : 4;
+  mesh.tets.resize(static_cast<Eigen::Index>(kept.size()), per_tet);
+  vtkNew<vtkIdList> ids;
+  for (std::size_t t = 0; t < kept.size(); ++t) {
+    grid.GetCellPoints(kept[t], ids);
+    if (ids->GetNumberOfIds() != per_tet)
+      throw InputError(file, "cell " + std::to_string(kept[t]),
+                       "expected " + std::to_string(per_tet) + " points, found " +
+                           std::to_string(ids->GetNumberOfIds()));
+    for (int a = 0; a < per_tet; ++a) {
+      // check_tet_mesh() checks the range; clamping only keeps a huge id from wrapping around.
+      const vtkIdType id = std::clamp<vtkIdType>(ids->GetId(a), -1, std::numeric_limits<int>::max());
+      mesh.tets(static_cast<Eigen::Index>(t), a) = static_cast<int>(id);
+    }
+  }
+  return mesh;
+}
+
+/// The extension of a file name in lower case, ".vtu" for "Liver.VTU".
+std::string lower_extension(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+} // namespace
+
+TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
+  const std::string name = file.string();
+  if (!std::filesystem::exists(file)) throw InputError(name, "file", "does not exist");
+  if (std::filesystem::is_directory(file)) throw InputError(name, "file", "is a folder");
+
+  vtkNew<VtkMessageCatcher> catcher;
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  if (lower_extension(file) == ".vtu") {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    // The XML reader parses with helper objects of its own; these setters hand them our
+    // observer, so that their complaints reach us too.
+    reader->SetParserErrorObserver(catcher);
+    reader->SetReaderErrorObserver(catcher);
+    reader->SetFileName(name.c_str());
+    grid = run_reader(*reader, *catcher, name, warnings);
+  } else {
+    vtkNew<vtkUnstructuredGridReader> reader;
+    reader->SetFileName(name.c_str());
+    grid = run_reader(*reader, *catcher, name, warnings);
+  }
+
+  TetMesh mesh = mesh_from_grid(*grid, name);
+  check_tet_mesh(mesh, name, warnings);
+  return mesh;
+}
+
+} // namespace kerf
