@@ -37,6 +37,7 @@
 #include "kerf/io/probes_csv.hpp"
 #include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
+#include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/solve/linear_solver.hpp"
@@ -123,6 +124,11 @@ void LinearElasticity::setup_system() {
     const std::string field = "dirichlet[" + std::to_string(i) + "].region";
     conditions.push_back({kerf::scene_region_nodes(scene_, mesh_, scene_.dirichlet[i].region, field),
                           scene_.dirichlet[i].displacement});
+  }
+  // A node that belongs to no tet (a stray point in a mesh file) has no stiffness: we hold it.
+  if (const auto stray = kerf::nodes_without_tets(mesh_); !stray.empty()) {
+    std::cerr << "warning: " << stray.size() << " nodes belong to no tetrahedron and are held fixed\n";
+    conditions.push_back({stray, Eigen::Vector3d::Zero()});
   }
   dofs_ = kerf::make_dof_map(mesh_.num_nodes(), conditions);
   if (dofs_.num_free == 0) throw kerf::InputError(scene_.source.string(), "dirichlet", "every DOF is prescribed: nothing to solve");

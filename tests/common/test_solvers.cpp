@@ -1,6 +1,7 @@
 // The four solvers give the same answer; a body held by nothing is reported, not solved.
 #include "kerf/fem/assemble_loads.hpp"
 #include "kerf/fem/rigid_motion_check.hpp"
+#include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/fem/solve_linear_static.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/node_region.hpp"
@@ -55,4 +56,17 @@ TEST_CASE("free rigid motions are counted exactly") {
   two.tets.conservativeResize(mesh.num_tets() + shifted.num_tets(), 4);
   two.tets.bottomRows(shifted.num_tets()) = shifted.tets.array() + static_cast<int>(mesh.num_nodes());
   CHECK(kerf::count_free_rigid_motions(two, kerf::make_dof_map(two.num_nodes(), {{kerf::nodes_in_region(mesh, bottom), {0, 0, 0}}})) == 6);
+}
+
+TEST_CASE("a node in no tet is a free motion until it is held") {
+  kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1});
+  mesh.nodes.conservativeResize(mesh.num_nodes() + 1, 3);
+  mesh.nodes.bottomRows<1>() << 5, 5, 5;
+  kerf::NodeRegion bottom;
+  bottom.box_max = {1, 1, 0};
+  const std::vector<int> stray = kerf::nodes_without_tets(mesh);
+  CHECK(stray == std::vector<int>{8});
+  CHECK(kerf::count_free_rigid_motions(mesh, kerf::make_dof_map(mesh.num_nodes(), {{kerf::nodes_in_region(mesh, bottom), {0, 0, 0}}})) == 3);
+  CHECK(kerf::count_free_rigid_motions(
+            mesh, kerf::make_dof_map(mesh.num_nodes(), {{kerf::nodes_in_region(mesh, bottom), {0, 0, 0}}, {stray, {0, 0, 0}}})) == 0);
 }

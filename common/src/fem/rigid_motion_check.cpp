@@ -27,11 +27,16 @@ int count_free_rigid_motions(const TetMesh& mesh, const DofMap& dofs) {
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     for (int a = 0; a < mesh.nodes_per_tet(); ++a) used[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
 
+  // A node in no tet has no stiffness at all: each of its free DOFs is a free motion.
+  int free_motions = 0;
+  for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v)
+    if (!used[static_cast<std::size_t>(v)])
+      for (int p = 0; p < 3; ++p) free_motions += dofs.free_index[static_cast<std::size_t>(3 * v + p)] >= 0;
+
   std::vector<std::vector<int>> pieces(static_cast<std::size_t>(mesh.num_nodes()));
   for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v)
     if (used[static_cast<std::size_t>(v)]) pieces[static_cast<std::size_t>(find_root(parent, static_cast<int>(v)))].push_back(static_cast<int>(v));
 
-  int free_motions = 0;
   for (const auto& piece : pieces) {
     if (piece.empty()) continue;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();

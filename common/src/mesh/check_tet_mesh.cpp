@@ -16,6 +16,16 @@ double signed_tet_volume(const TetMesh& mesh, Eigen::Index t) {
   return edges.determinant() / 6.0;
 }
 
+std::vector<int> nodes_without_tets(const TetMesh& mesh) {
+  std::vector<char> used(static_cast<std::size_t>(mesh.num_nodes()), 0);
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
+    for (int a = 0; a < mesh.nodes_per_tet(); ++a) used[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
+  std::vector<int> unused;
+  for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v)
+    if (!used[static_cast<std::size_t>(v)]) unused.push_back(static_cast<int>(v));
+  return unused;
+}
+
 int check_tet_mesh(TetMesh& mesh, const std::string& file, std::ostream* warnings) {
   if (mesh.num_nodes() == 0) throw InputError(file, "nodes", "the mesh has no nodes");
   if (mesh.num_tets() == 0) throw InputError(file, "elements", "the mesh has no tetrahedra");

@@ -16,7 +16,8 @@ namespace kerf {
 /// (singular values below 1e-10 of the largest). A piece with no prescribed DOF has 6 free
 /// motions; a piece fixed at two nodes only can still turn about the line through them: 1.
 /// Factorisations cannot be relied on for this: a singular K_ff often factorises with pivots
-/// of round-off size and yields a huge, finite, wrong answer.
+/// of round-off size and yields a huge, finite, wrong answer. Every free DOF of a node that
+/// belongs to no tet counts as one free motion too.
 int count_free_rigid_motions(const TetMesh& mesh, const DofMap& dofs);
 
 } // namespace kerf

@@ -6,6 +6,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace kerf {
 
@@ -22,6 +23,10 @@ namespace kerf {
 /// @param warnings where the one-line warning goes (may be nullptr to stay quiet)
 /// @return the number of tets that were reoriented
 int check_tet_mesh(TetMesh& mesh, const std::string& file, std::ostream* warnings);
+
+/// The nodes that belong to no tet (stray geometry points in a Gmsh file, say). They carry no
+/// stiffness, so a solver must hold them fixed; chapters do so with a warning.
+std::vector<int> nodes_without_tets(const TetMesh& mesh);
 
 /// Signed volume of the tet spanned by the first four nodes of row `t`: det[x1-x0, x2-x0, x3-x0] / 6.
 double signed_tet_volume(const TetMesh& mesh, Eigen::Index t);
