@@ -12,11 +12,21 @@ namespace {
 const char* not_positive_definite =
     "the stiffness matrix is not positive definite: is the body held by enough Dirichlet conditions?";
 
+// CHOLMOD prints a warning to stderr when a matrix is not positive definite; the callers here
+// handle that case themselves (an error message, or a fallback tangent), and every other
+// failure also surfaces through info(), so CHOLMOD prints nothing.
+template <class Decomposition>
+void silence_warnings(Decomposition&) {}
+template <class Matrix, int UpLo>
+void silence_warnings(Eigen::CholmodSupernodalLLT<Matrix, UpLo>& decomposition) {
+  decomposition.cholmod().print = 0;
+}
+
 /// A direct Cholesky-type solver wrapping an Eigen decomposition (CHOLMOD or SimplicialLDLT).
 template <class Decomposition>
 class DirectSolver final : public LinearSolver {
 public:
-  explicit DirectSolver(std::string name) : name_(std::move(name)) {}
+  explicit DirectSolver(std::string name) : name_(std::move(name)) { silence_warnings(decomposition_); }
   std::string name() const override { return name_; }
   void analyze_pattern(const Eigen::SparseMatrix<double>& A) override { decomposition_.analyzePattern(A); }
   void factorize(const Eigen::SparseMatrix<double>& A) override {

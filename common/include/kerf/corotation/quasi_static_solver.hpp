@@ -1,0 +1,54 @@
+/// @file quasi_static_solver.hpp
+/// @brief Equilibrium of the corotated body under large loads: load steps and Newton iterations.
+#pragma once
+
+#include "kerf/corotation/corotational_model.hpp"
+#include "kerf/fem/dof_map.hpp"
+#include "kerf/solve/linear_solver.hpp"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace kerf {
+
+/// How the quasi-static solver works.
+struct QuasiStaticSettings {
+  int load_steps = 10;        ///< loads and prescribed displacements ramped in equal increments
+  int max_iterations = 40;    ///< Newton iterations allowed per load step
+  double tolerance = 1e-9;    ///< stop when |r_f| <= tolerance * (the step's force scale)
+  RotationMethod rotation = RotationMethod::automatic;
+  CorotationalTangent tangent = CorotationalTangent::consistent;
+  SolverSettings solver;      ///< for each linearised system
+};
+
+/// One Newton iteration, for the convergence history.
+struct NewtonIteration {
+  int step = 0;              ///< load step, 1-based
+  int iteration = 0;         ///< iteration within the step, 0 = before the first update
+  double relative_residual = 0.0; ///< |r_f| / force scale
+  bool warped_fallback = false;   ///< the consistent tangent was not positive definite here
+};
+
+/// What the solver returns.
+struct QuasiStaticResult {
+  Eigen::VectorXd u;                  ///< displacements at the last load step (3#V)
+  std::vector<NewtonIteration> history;
+  bool converged = true;              ///< every step met the tolerance
+  int total_iterations = 0;           ///< linear solves in all
+  CorotationStatistics last_statistics;
+};
+
+/// Finds u with f_int(u) = lambda f_ext on the free DOFs and u_c = lambda u_c_final, for
+/// lambda = 1/N, 2/N, ..., 1.
+///
+/// Each step starts from the previous equilibrium. The first iteration linearises about it with
+/// the prescribed increment lifted to the right-hand side (K_ff du_f = r_f - K_fc du_c), so that
+/// the nodes next to a moving support move with it from the start; later iterations correct
+/// with du_c = 0. The tangent is `settings.tangent`; when the consistent tangent is not positive
+/// definite (strong compression) that iteration uses the warped one, R K R^T, which always is.
+/// The force scale of a step is the largest of |lambda f_ext|, |f_int(u)| over all DOFs, and
+/// |K_fc du_c|: the forces that are in play, so that the tolerance is relative.
+QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
+                                     const QuasiStaticSettings& settings);
+
+} // namespace kerf

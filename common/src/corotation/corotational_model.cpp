@@ -1,0 +1,122 @@
+#include "kerf/corotation/corotational_model.hpp"
+
+#include "kerf/fem/tet_quadrature.hpp"
+#include "kerf/fem/tet_shape_functions.hpp"
+#include "kerf/fem/tet_stiffness.hpp"
+
+#include <Eigen/Dense>
+
+namespace kerf {
+
+namespace {
+
+template <int n>
+Eigen::Matrix<double, n, 3> element_rows(const NodeMatrix& nodes, const TetMatrix& tets, Eigen::Index t) {
+  Eigen::Matrix<double, n, 3> X;
+  for (int a = 0; a < n; ++a) X.row(a) = nodes.row(tets(t, a));
+  return X;
+}
+
+template <int n>
+Eigen::Matrix<double, n, 3> current_rows(const TetMesh& mesh, const Eigen::VectorXd& u, Eigen::Index t) {
+  Eigen::Matrix<double, n, 3> x;
+  for (int a = 0; a < n; ++a) x.row(a) = mesh.nodes.row(mesh.tets(t, a)) + u.segment<3>(3 * mesh.tets(t, a)).transpose();
+  return x;
+}
+
+void record(const PolarDecomposition& polar, const Eigen::Matrix3d& F, CorotationStatistics& stats) {
+  if (F.determinant() <= 0.0) ++stats.inverted_points;
+  if (polar.iterations > 0 && !polar.converged) ++stats.higham_failures;
+  stats.max_higham_iterations = std::max(stats.max_higham_iterations, polar.iterations);
+}
+
+} // namespace
+
+CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& material) : mesh_(mesh), material_(material) {
+  if (mesh.order() == 1) {
+    tet4_stiffness_.resize(static_cast<std::size_t>(mesh.num_tets()));
+    tet4_gradients_.resize(static_cast<std::size_t>(mesh.num_tets()));
+    for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+      const Eigen::Matrix<double, 4, 3> X = element_rows<4>(mesh.nodes, mesh.tets, t);
+      double det_J = 0.0;
+      tet4_gradients_[static_cast<std::size_t>(t)] = physical_shape_gradients<4>(X, tet4_shape_gradients(), det_J);
+      tet4_stiffness_[static_cast<std::size_t>(t)] = tet4_stiffness(X, material);
+    }
+  } else {
+    const TetQuadratureRule rule = tet_quadrature_rule(2);
+    for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+      const Eigen::Matrix<double, 10, 3> X = element_rows<10>(mesh.nodes, mesh.tets, t);
+      for (std::size_t q = 0; q < rule.points.size(); ++q) {
+        double det_J = 0.0;
+        tet10_gradients_.push_back(physical_shape_gradients<10>(X, tet10_shape_gradients(rule.points[q]), det_J));
+        tet10_weights_.push_back(rule.weights[q] * det_J);
+      }
+    }
+  }
+}
+
+CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                                 Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
+  CorotationStatistics stats;
+  f_int = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
+  const double mu = material_.mu(), lambda = material_.lambda();
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    if (mesh_.order() == 1) {
+      const auto e = static_cast<std::size_t>(t);
+      const Eigen::Matrix<double, 4, 3> X = element_rows<4>(mesh_.nodes, mesh_.tets, t);
+      const Eigen::Matrix<double, 4, 3> x = current_rows<4>(mesh_, u, t);
+      Eigen::Matrix<double, 12, 1> f = Eigen::Matrix<double, 12, 1>::Zero();
+      Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
+      const PolarDecomposition polar =
+          add_corotated_point<4>(tet4_stiffness_[e], tet4_gradients_[e], X, x, rotation, tangent, f, assembler ? &Kt : nullptr);
+      record(polar, x.transpose() * tet4_gradients_[e], stats);
+      for (int a = 0; a < 4; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
+      if (assembler) assembler->add_element<12>(t, Kt, *rhs_free);
+    } else {
+      const Eigen::Matrix<double, 10, 3> X = element_rows<10>(mesh_.nodes, mesh_.tets, t);
+      const Eigen::Matrix<double, 10, 3> x = current_rows<10>(mesh_, u, t);
+      Eigen::Matrix<double, 30, 1> f = Eigen::Matrix<double, 30, 1>::Zero();
+      Eigen::Matrix<double, 30, 30> Kt = Eigen::Matrix<double, 30, 30>::Zero();
+      for (int q = 0; q < 4; ++q) {
+        const auto p = static_cast<std::size_t>(4 * t + q);
+        // This point's share of the element stiffness (eq. 30 times its weight).
+        Eigen::Matrix<double, 30, 30> K_q = Eigen::Matrix<double, 30, 30>::Zero();
+        add_stiffness_integrand<10>(tet10_gradients_[p], tet10_weights_[p], mu, lambda, K_q);
+        const PolarDecomposition polar =
+            add_corotated_point<10>(K_q, tet10_gradients_[p], X, x, rotation, tangent, f, assembler ? &Kt : nullptr);
+        record(polar, x.transpose() * tet10_gradients_[p], stats);
+      }
+      for (int a = 0; a < 10; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
+      if (assembler) assembler->add_element<30>(t, Kt, *rhs_free);
+    }
+  }
+  return stats;
+}
+
+double CorotationalModel::energy(const Eigen::VectorXd& u, RotationMethod rotation) const {
+  // With f = K_R d the element force in the unrotated frame, the energy is 1/2 d^T K d.
+  double energy = 0.0;
+  const double mu = material_.mu(), lambda = material_.lambda();
+  const auto add = [&](const auto& K, const auto& G, const auto& X, const auto& x) {
+    const PolarDecomposition polar = element_rotation(Eigen::Matrix3d(x.transpose() * G), rotation);
+    Eigen::VectorXd d(K.rows());
+    for (Eigen::Index a = 0; a < X.rows(); ++a) d.segment<3>(3 * a) = polar.R.transpose() * x.row(a).transpose() - X.row(a).transpose();
+    energy += 0.5 * d.dot(K * d);
+  };
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    if (mesh_.order() == 1) {
+      const auto e = static_cast<std::size_t>(t);
+      add(tet4_stiffness_[e], tet4_gradients_[e], element_rows<4>(mesh_.nodes, mesh_.tets, t), current_rows<4>(mesh_, u, t));
+    } else {
+      for (int q = 0; q < 4; ++q) {
+        const auto p = static_cast<std::size_t>(4 * t + q);
+        Eigen::Matrix<double, 30, 30> K_q = Eigen::Matrix<double, 30, 30>::Zero();
+        add_stiffness_integrand<10>(tet10_gradients_[p], tet10_weights_[p], mu, lambda, K_q);
+        add(K_q, tet10_gradients_[p], element_rows<10>(mesh_.nodes, mesh_.tets, t), current_rows<10>(mesh_, u, t));
+      }
+    }
+  }
+  return energy;
+}
+
+} // namespace kerf

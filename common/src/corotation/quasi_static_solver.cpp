@@ -1,0 +1,76 @@
+#include "kerf/corotation/quasi_static_solver.hpp"
+
+#include "kerf/fem/sparse_assembler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace kerf {
+
+QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
+                                     const QuasiStaticSettings& settings) {
+  const TetMesh& mesh = model.mesh();
+  // The assembler lifts with the prescribed values of `increment`: the increment of u_c in the
+  // first iteration of a step, zero afterwards.
+  DofMap increment = dofs;
+  SparseAssembler assembler(mesh.tets, increment);
+  auto solver = make_linear_solver(settings.solver);
+  solver->analyze_pattern(assembler.matrix());
+
+  QuasiStaticResult result;
+  result.u = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  Eigen::VectorXd f_int, rhs, du_free;
+  for (int step = 1; step <= settings.load_steps; ++step) {
+    const double lambda = double(step) / settings.load_steps;
+    const double previous = double(step - 1) / settings.load_steps;
+    increment.prescribed = (lambda - previous) * dofs.prescribed;
+    const Eigen::VectorXd load = dofs.restrict_to_free(lambda * f_ext);
+    double scale = (lambda * f_ext).norm();
+    bool step_converged = false;
+    for (int iteration = 0; iteration <= settings.max_iterations; ++iteration) {
+      // Residual at the current state, and the tangent, in one pass over the elements.
+      assembler.set_zero();
+      rhs = Eigen::VectorXd::Zero(dofs.num_free);
+      const bool first = iteration == 0;
+      if (!first) increment.prescribed.setZero();
+      result.last_statistics = model.assemble(result.u, settings.rotation, settings.tangent, f_int, &assembler, &rhs);
+      const Eigen::VectorXd residual = load - dofs.restrict_to_free(f_int);
+      scale = std::max({scale, f_int.norm(), rhs.norm()}); // rhs holds -K_fc du_c so far
+      const double relative = scale > 0.0 ? residual.norm() / scale : residual.norm();
+      NewtonIteration record{step, iteration, relative, false};
+      if (!first && relative <= settings.tolerance) {
+        result.history.push_back(record);
+        step_converged = true;
+        break;
+      }
+      if (iteration == settings.max_iterations) {
+        result.history.push_back(record);
+        break;
+      }
+      rhs += residual;
+      try {
+        solver->factorize(assembler.matrix());
+      } catch (const std::runtime_error&) {
+        if (settings.tangent != CorotationalTangent::consistent) throw;
+        // Not positive definite: take this step with the warped stiffness, which always is.
+        assembler.set_zero();
+        rhs = Eigen::VectorXd::Zero(dofs.num_free);
+        model.assemble(result.u, settings.rotation, CorotationalTangent::warped, f_int, &assembler, &rhs);
+        rhs += residual;
+        solver->factorize(assembler.matrix());
+        record.warped_fallback = true;
+      }
+      result.history.push_back(record);
+      du_free = Eigen::VectorXd::Zero(dofs.num_free);
+      solver->solve(rhs, du_free);
+      ++result.total_iterations;
+      result.u += increment.expand(du_free); // free DOFs move by du_f, prescribed ones by du_c
+      if (!result.u.allFinite()) throw std::runtime_error("the Newton iteration produced a non-finite displacement");
+    }
+    result.converged = result.converged && step_converged;
+  }
+  return result;
+}
+
+} // namespace kerf
