@@ -119,12 +119,7 @@ void LinearElasticity::make_mesh() {
 // entry in it; the solver analyses that pattern (fill-reducing ordering, symbolic
 // factorisation) once too.
 void LinearElasticity::setup_system() {
-  std::vector<kerf::DirichletNodes> conditions;
-  for (std::size_t i = 0; i < scene_.dirichlet.size(); ++i) {
-    const std::string field = "dirichlet[" + std::to_string(i) + "].region";
-    conditions.push_back({kerf::scene_region_nodes(scene_, mesh_, scene_.dirichlet[i].region, field),
-                          scene_.dirichlet[i].displacement});
-  }
+  std::vector<kerf::DirichletNodes> conditions = kerf::scene_dirichlet_nodes(scene_, mesh_);
   // A node that belongs to no tet (a stray point in a mesh file) has no stiffness: we hold it.
   if (const auto stray = kerf::nodes_without_tets(mesh_); !stray.empty()) {
     std::cerr << "warning: " << stray.size() << " nodes belong to no tetrahedron and are held fixed\n";

@@ -162,6 +162,13 @@ MeshSpec read_mesh(const ObjectReader& scene, const std::filesystem::path& base)
 
 } // namespace
 
+Eigen::Vector3d DirichletSpec::displacement_at(const Eigen::Vector3d& X) const {
+  if (!has_rotation) return displacement;
+  const double radians = degrees * 3.14159265358979323846 / 180.0;
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(radians, axis).toRotationMatrix();
+  return (Q - Eigen::Matrix3d::Identity()) * (X - center) + displacement;
+}
+
 Scene parse_scene(const std::string& json_text, const std::filesystem::path& source, const std::filesystem::path& base) {
   const std::string file = source.string();
   json document;
@@ -175,7 +182,8 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
     throw InputError(file, "JSON", what);
   }
   ObjectReader r(document, "", file);
-  r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "time", "output", "solver"});
+  r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "time", "output", "solver",
+                "quasi_static"});
 
   Scene scene;
   scene.source = source;
@@ -203,10 +211,22 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string path = "dirichlet[" + std::to_string(i) + "]";
       ObjectReader d(list[i], path, file);
-      d.allow_only({"region", "displacement"});
+      d.allow_only({"region", "displacement", "rotation"});
       DirichletSpec spec;
       spec.region = read_region(d.at("region"), path + ".region", file);
       spec.displacement = d.vector<3>("displacement", Eigen::Vector3d::Zero());
+      if (d.has("rotation")) {
+        ObjectReader rotation(d.at("rotation"), path + ".rotation", file);
+        rotation.allow_only({"axis", "degrees", "center"});
+        rotation.at("axis");
+        rotation.at("degrees");
+        spec.has_rotation = true;
+        spec.axis = rotation.vector<3>("axis", Eigen::Vector3d::UnitZ());
+        if (!(spec.axis.norm() > 0.0)) rotation.fail(path + ".rotation.axis", "expected a non-zero vector");
+        spec.axis.normalize();
+        spec.degrees = rotation.number("degrees", 0.0);
+        spec.center = rotation.vector<3>("center", Eigen::Vector3d::Zero());
+      }
       scene.dirichlet.push_back(spec);
     }
   }
@@ -286,6 +306,24 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
     o.allow_only({"every"});
     scene.output_every = o.integer("every", 1);
     if (scene.output_every < 1) o.fail("output.every", "expected a positive integer");
+  }
+
+  if (r.has("quasi_static")) {
+    ObjectReader q(r.at("quasi_static"), "quasi_static", file);
+    q.allow_only({"load_steps", "max_iterations", "tolerance", "tangent", "rotation"});
+    auto& spec = scene.quasi_static;
+    spec.load_steps = q.integer("load_steps", spec.load_steps);
+    spec.max_iterations = q.integer("max_iterations", spec.max_iterations);
+    spec.tolerance = q.number("tolerance", spec.tolerance);
+    spec.tangent = q.text("tangent", spec.tangent);
+    spec.rotation = q.text("rotation", spec.rotation);
+    if (spec.load_steps < 1 || spec.load_steps > 100000) q.fail("quasi_static.load_steps", "expected an integer in [1, 100000]");
+    if (spec.max_iterations < 1) q.fail("quasi_static.max_iterations", "expected a positive integer");
+    if (!(spec.tolerance > 0.0 && spec.tolerance < 1.0)) q.fail("quasi_static.tolerance", "expected a number in (0, 1)");
+    if (spec.tangent != "consistent" && spec.tangent != "warped")
+      q.fail("quasi_static.tangent", "expected \"consistent\" or \"warped\", got \"" + spec.tangent + "\"");
+    if (spec.rotation != "automatic" && spec.rotation != "higham" && spec.rotation != "svd")
+      q.fail("quasi_static.rotation", "expected \"automatic\", \"higham\" or \"svd\", got \"" + spec.rotation + "\"");
   }
 
   if (r.has("solver")) {

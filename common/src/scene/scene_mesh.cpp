@@ -36,4 +36,18 @@ std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, con
   return nodes;
 }
 
+std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh) {
+  std::vector<DirichletNodes> conditions;
+  for (std::size_t i = 0; i < scene.dirichlet.size(); ++i) {
+    const DirichletSpec& spec = scene.dirichlet[i];
+    const std::vector<int> nodes = scene_region_nodes(scene, mesh, spec.region, "dirichlet[" + std::to_string(i) + "].region");
+    if (!spec.has_rotation) {
+      conditions.push_back({nodes, spec.displacement});
+      continue;
+    }
+    for (int v : nodes) conditions.push_back({{v}, spec.displacement_at(mesh.nodes.row(v).transpose())});
+  }
+  return conditions;
+}
+
 } // namespace kerf

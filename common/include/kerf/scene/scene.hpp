@@ -24,10 +24,27 @@ struct MeshSpec {
   int order = 1;                       ///< 1: Tet4, 2: Tet10 (mid-edge nodes added by Kerf)
 };
 
-/// u = displacement on the nodes of region.
+/// u = displacement on the nodes of region, plus, if `has_rotation`, the rigid rotation by
+/// `degrees` about `axis` through `center`: u(X) = (Q - I)(X - center) + displacement.
 struct DirichletSpec {
   NodeRegion region;
   Eigen::Vector3d displacement{0, 0, 0}; ///< m
+  bool has_rotation = false;
+  Eigen::Vector3d axis{0, 0, 1};         ///< rotation axis (normalised when read)
+  double degrees = 0.0;                  ///< rotation angle, right-handed about axis
+  Eigen::Vector3d center{0, 0, 0};       ///< a point on the axis (m)
+
+  /// The prescribed displacement of a node at reference position X.
+  Eigen::Vector3d displacement_at(const Eigen::Vector3d& X) const;
+};
+
+/// How the corotational chapters reach equilibrium (see quasi_static_solver.hpp).
+struct QuasiStaticSpec {
+  int load_steps = 10;
+  int max_iterations = 40;
+  double tolerance = 1e-9;
+  std::string tangent = "consistent"; ///< "consistent" or "warped"
+  std::string rotation = "automatic"; ///< "automatic", "higham" or "svd"
 };
 
 /// A total force spread uniformly by area over the boundary faces inside region.
@@ -66,6 +83,7 @@ struct Scene {
   TimeSpec time;
   int output_every = 1;                  ///< write every n-th step
   SolverSettings solver;
+  QuasiStaticSpec quasi_static;
 };
 
 /// Reads and validates a scene file. Every problem (bad JSON, unknown field, wrong type, value

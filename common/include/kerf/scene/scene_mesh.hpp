@@ -2,6 +2,7 @@
 /// @brief Build the mesh a scene asks for, and turn its regions into checked node lists.
 #pragma once
 
+#include "kerf/fem/dof_map.hpp"
 #include "kerf/mesh/tet_mesh.hpp"
 #include "kerf/scene/scene.hpp"
 
@@ -19,5 +20,10 @@ TetMesh make_scene_mesh(const Scene& scene, std::ostream* warnings);
 /// or a region with no node is an InputError naming the scene file and `field`.
 std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, const NodeRegion& region,
                                     const std::string& field);
+
+/// The scene's Dirichlet conditions as node lists with their displacements: a plain entry is one
+/// list, an entry with a rotation gives every node its own displacement (Q - I)(X - c) + t.
+/// Regions are checked as scene_region_nodes does.
+std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh);
 
 } // namespace kerf
