@@ -36,10 +36,12 @@ CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& 
   if (mesh.order() == 1) {
     tet4_stiffness_.resize(static_cast<std::size_t>(mesh.num_tets()));
     tet4_gradients_.resize(static_cast<std::size_t>(mesh.num_tets()));
+    tet4_volumes_.resize(static_cast<std::size_t>(mesh.num_tets()));
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
       const Eigen::Matrix<double, 4, 3> X = element_rows<4>(mesh.nodes, mesh.tets, t);
       double det_J = 0.0;
       tet4_gradients_[static_cast<std::size_t>(t)] = physical_shape_gradients<4>(X, tet4_shape_gradients(), det_J);
+      tet4_volumes_[static_cast<std::size_t>(t)] = det_J / 6.0;
       tet4_stiffness_[static_cast<std::size_t>(t)] = tet4_stiffness(X, material);
     }
   } else {
@@ -67,8 +69,8 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
       const Eigen::Matrix<double, 4, 3> x = current_rows<4>(mesh_, u, t);
       Eigen::Matrix<double, 12, 1> f = Eigen::Matrix<double, 12, 1>::Zero();
       Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
-      const PolarDecomposition polar =
-          add_corotated_point<4>(tet4_stiffness_[e], tet4_gradients_[e], X, x, rotation, tangent, f, assembler ? &Kt : nullptr);
+      const PolarDecomposition polar = add_corotated_point<4>(tet4_stiffness_[e], tet4_gradients_[e], X, x, tet4_volumes_[e], mu,
+                                                              lambda, rotation, tangent, f, assembler ? &Kt : nullptr);
       record(polar, x.transpose() * tet4_gradients_[e], stats);
       for (int a = 0; a < 4; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
       if (assembler) assembler->add_element<12>(t, Kt, *rhs_free);
@@ -82,8 +84,8 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
         // This point's share of the element stiffness (eq. 30 times its weight).
         Eigen::Matrix<double, 30, 30> K_q = Eigen::Matrix<double, 30, 30>::Zero();
         add_stiffness_integrand<10>(tet10_gradients_[p], tet10_weights_[p], mu, lambda, K_q);
-        const PolarDecomposition polar =
-            add_corotated_point<10>(K_q, tet10_gradients_[p], X, x, rotation, tangent, f, assembler ? &Kt : nullptr);
+        const PolarDecomposition polar = add_corotated_point<10>(K_q, tet10_gradients_[p], X, x, tet10_weights_[p], mu, lambda,
+                                                                 rotation, tangent, f, assembler ? &Kt : nullptr);
         record(polar, x.transpose() * tet10_gradients_[p], stats);
       }
       for (int a = 0; a < 10; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);

@@ -45,6 +45,7 @@ private:
   LinearMaterial material_;
   std::vector<Eigen::Matrix<double, 12, 12>> tet4_stiffness_;  ///< Tet4: K per element
   std::vector<Eigen::Matrix<double, 4, 3>> tet4_gradients_;    ///< Tet4: grad N per element
+  std::vector<double> tet4_volumes_;                           ///< Tet4: V per element
   std::vector<Eigen::Matrix<double, 10, 3>> tet10_gradients_;  ///< Tet10: grad N per element and point (4 per element)
   std::vector<double> tet10_weights_;                          ///< Tet10: w_q |det J| per element and point
 };
