@@ -28,16 +28,12 @@
 // has: make a mesh, set up the unknowns, assemble, solve, write the results.
 #include "kerf/app/command_line.hpp"
 #include "kerf/app/input_error.hpp"
-#include "kerf/fem/assemble_loads.hpp"
 #include "kerf/fem/dof_map.hpp"
-#include "kerf/fem/evaluate_displacement.hpp"
-#include "kerf/fem/rigid_motion_check.hpp"
 #include "kerf/fem/assemble_stiffness.hpp"
 #include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/io/probes_csv.hpp"
 #include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
-#include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/solve/linear_solver.hpp"
@@ -114,26 +110,16 @@ void LinearElasticity::make_mesh() {
 // them. We eliminate those from the system instead of penalising them: writing
 // \f$u = (u_f, u_c)\f$ for the free and the prescribed DOFs, the equations of the free ones are
 // \f[ K_{ff}\, u_f = f_f - K_{fc}\, u_c , \f]
-// a smaller system that is still symmetric positive definite. The assembler builds the
+// a smaller system that is still symmetric positive definite, provided the conditions hold
+// every rigid motion of the body: kerf::scene_dof_map counts the motions they leave free
+// (kerf::count_free_rigid_motions) and refuses the scene if there are any, before any
+// factorisation, because a factorisation of a singular matrix may "succeed" with round-off
+// pivots and return a huge, finite, wrong answer. The assembler builds the
 // sparsity pattern of \f$K_{ff}\f$ here, once, together with the position of every element
 // entry in it; the solver analyses that pattern (fill-reducing ordering, symbolic
 // factorisation) once too.
 void LinearElasticity::setup_system() {
-  std::vector<kerf::DirichletNodes> conditions = kerf::scene_dirichlet_nodes(scene_, mesh_);
-  // A node that belongs to no tet (a stray point in a mesh file) has no stiffness: we hold it.
-  if (const auto stray = kerf::nodes_without_tets(mesh_); !stray.empty()) {
-    std::cerr << "warning: " << stray.size() << " nodes belong to no tetrahedron and are held fixed\n";
-    conditions.push_back({stray, Eigen::Vector3d::Zero()});
-  }
-  dofs_ = kerf::make_dof_map(mesh_.num_nodes(), conditions);
-  if (dofs_.num_free == 0) throw kerf::InputError(scene_.source.string(), "dirichlet", "every DOF is prescribed: nothing to solve");
-  // A body that can still move rigidly has a singular stiffness matrix. We count the rigid
-  // motions the conditions leave free before any factorisation, because a factorisation of a
-  // singular matrix may well "succeed" with round-off pivots and return garbage.
-  if (const int free_motions = kerf::count_free_rigid_motions(mesh_, dofs_); free_motions > 0)
-    throw kerf::InputError(scene_.source.string(), "dirichlet",
-                           "the conditions leave " + std::to_string(free_motions) +
-                               " rigid motions of the body free; fix at least three non-collinear nodes of every piece");
+  dofs_ = kerf::scene_dof_map(scene_, mesh_, &std::cerr);
   assembler_ = std::make_unique<kerf::SparseAssembler>(mesh_.tets, dofs_);
   solver_ = kerf::make_linear_solver(scene_.solver);
   solver_->analyze_pattern(assembler_->matrix());
@@ -159,14 +145,7 @@ void LinearElasticity::setup_system() {
 // \f$\int t\, \Phi_a\, dA\f$ with \f$t = F_{\rm total} / A\f$.
 void LinearElasticity::assemble_system() {
   assembler_->set_zero();
-  Eigen::VectorXd f = kerf::assemble_gravity(mesh_, scene_.material.density, scene_.gravity);
-  for (std::size_t i = 0; i < scene_.traction.size(); ++i) {
-    const std::string field = "traction[" + std::to_string(i) + "].region";
-    std::vector<char> in_region(static_cast<std::size_t>(mesh_.num_nodes()), 0);
-    for (int v : kerf::scene_region_nodes(scene_, mesh_, scene_.traction[i].region, field)) in_region[static_cast<std::size_t>(v)] = 1;
-    if (kerf::add_uniform_traction(mesh_, boundary_, in_region, scene_.traction[i].total_force, f) == 0.0)
-      throw kerf::InputError(scene_.source.string(), field, "no boundary face has all its nodes in the region");
-  }
+  const Eigen::VectorXd f = kerf::scene_external_loads(scene_, mesh_, boundary_);
   rhs_ = dofs_.restrict_to_free(f);
   kerf::assemble_linear_stiffness(mesh_, scene_.material, *assembler_, rhs_);
 }
@@ -196,13 +175,7 @@ void LinearElasticity::output_results() const {
   report("wrote " + vtu.string() + "; max |u| = " + std::to_string(displacement.rowwise().norm().maxCoeff()) + " m");
 
   if (options_.probes_in) {
-    const Eigen::MatrixXd points = kerf::read_probes_csv(*options_.probes_in);
-    Eigen::Index num_outside = 0;
-    const Eigen::MatrixXd values = kerf::evaluate_displacement_at(mesh_, u_, points, num_outside);
-    kerf::write_probes_csv(*options_.probes_out, points, values);
-    if (num_outside > 0)
-      std::cerr << "warning: " << options_.probes_in->string() << ": " << num_outside << " of " << points.rows()
-                << " probe points are outside the mesh (written as nan)\n";
+    kerf::sample_probes(*options_.probes_in, *options_.probes_out, mesh_, u_, &std::cerr);
     report("wrote " + options_.probes_out->string());
   }
 }

@@ -30,15 +30,11 @@
 #include "kerf/app/input_error.hpp"
 #include "kerf/corotation/corotational_model.hpp"
 #include "kerf/corotation/quasi_static_solver.hpp"
-#include "kerf/fem/assemble_loads.hpp"
 #include "kerf/fem/dof_map.hpp"
-#include "kerf/fem/evaluate_displacement.hpp"
-#include "kerf/fem/rigid_motion_check.hpp"
 #include "kerf/fem/solve_linear_static.hpp"
 #include "kerf/io/probes_csv.hpp"
 #include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
-#include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_mesh.hpp"
 
@@ -120,17 +116,7 @@ void CorotationalElasticity::make_mesh() {
 // shape gradients and the linear stiffness of chapter 1, so that a Newton iteration only has
 // to find the rotations and turn the stored matrices with them.
 void CorotationalElasticity::setup_system() {
-  std::vector<kerf::DirichletNodes> conditions = kerf::scene_dirichlet_nodes(scene_, mesh_);
-  if (const auto stray = kerf::nodes_without_tets(mesh_); !stray.empty()) {
-    std::cerr << "warning: " << stray.size() << " nodes belong to no tetrahedron and are held fixed\n";
-    conditions.push_back({stray, Eigen::Vector3d::Zero()});
-  }
-  dofs_ = kerf::make_dof_map(mesh_.num_nodes(), conditions);
-  if (dofs_.num_free == 0) throw kerf::InputError(scene_.source.string(), "dirichlet", "every DOF is prescribed: nothing to solve");
-  if (const int free_motions = kerf::count_free_rigid_motions(mesh_, dofs_); free_motions > 0)
-    throw kerf::InputError(scene_.source.string(), "dirichlet",
-                           "the conditions leave " + std::to_string(free_motions) +
-                               " rigid motions of the body free; fix at least three non-collinear nodes of every piece");
+  dofs_ = kerf::scene_dof_map(scene_, mesh_, &std::cerr);
   model_ = std::make_unique<kerf::CorotationalModel>(mesh_, scene_.material);
   report("system: " + std::to_string(dofs_.num_free) + " unknowns");
 }
@@ -142,14 +128,7 @@ void CorotationalElasticity::setup_system() {
 // loads): a traction keeps its direction while the face it acts on turns. That is the
 // simplest model, and the one the comparison with CalculiX in the results uses.
 void CorotationalElasticity::assemble_system() {
-  f_ext_ = kerf::assemble_gravity(mesh_, scene_.material.density, scene_.gravity);
-  for (std::size_t i = 0; i < scene_.traction.size(); ++i) {
-    const std::string field = "traction[" + std::to_string(i) + "].region";
-    std::vector<char> in_region(static_cast<std::size_t>(mesh_.num_nodes()), 0);
-    for (int v : kerf::scene_region_nodes(scene_, mesh_, scene_.traction[i].region, field)) in_region[static_cast<std::size_t>(v)] = 1;
-    if (kerf::add_uniform_traction(mesh_, boundary_, in_region, scene_.traction[i].total_force, f_ext_) == 0.0)
-      throw kerf::InputError(scene_.source.string(), field, "no boundary face has all its nodes in the region");
-  }
+  f_ext_ = kerf::scene_external_loads(scene_, mesh_, boundary_);
 }
 
 // @sect4{CorotationalElasticity::solve}
@@ -218,13 +197,7 @@ void CorotationalElasticity::output_results() const {
   }
 
   if (options_.probes_in) {
-    const Eigen::MatrixXd points = kerf::read_probes_csv(*options_.probes_in);
-    Eigen::Index num_outside = 0;
-    const Eigen::MatrixXd values = kerf::evaluate_displacement_at(mesh_, u_, points, num_outside);
-    kerf::write_probes_csv(*options_.probes_out, points, values);
-    if (num_outside > 0)
-      std::cerr << "warning: " << options_.probes_in->string() << ": " << num_outside << " of " << points.rows()
-                << " probe points are outside the mesh (written as nan)\n";
+    kerf::sample_probes(*options_.probes_in, *options_.probes_out, mesh_, u_, &std::cerr);
     report("wrote " + options_.probes_out->string());
   }
 }

@@ -1,6 +1,7 @@
 #include "kerf/io/probes_csv.hpp"
 
 #include "kerf/app/input_error.hpp"
+#include "kerf/fem/evaluate_displacement.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -80,6 +81,17 @@ void write_probes_csv(const std::filesystem::path& file, const Eigen::MatrixXd& 
     }
   }
   if (std::fclose(out) != 0) throw InputError(file.string(), "file", "cannot write the probe output");
+}
+
+void sample_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out, const TetMesh& mesh,
+                   const Eigen::VectorXd& u, std::ostream* warnings) {
+  const Eigen::MatrixXd points = read_probes_csv(probes_in);
+  Eigen::Index num_outside = 0;
+  const Eigen::MatrixXd values = evaluate_displacement_at(mesh, u, points, num_outside);
+  write_probes_csv(probes_out, points, values);
+  if (num_outside > 0 && warnings)
+    *warnings << "warning: " << probes_in.string() << ": " << num_outside << " of " << points.rows()
+              << " probe points are outside the mesh (written as nan)\n";
 }
 
 } // namespace kerf

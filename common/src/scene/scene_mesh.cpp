@@ -1,6 +1,9 @@
 #include "kerf/scene/scene_mesh.hpp"
 
 #include "kerf/app/input_error.hpp"
+#include "kerf/fem/assemble_loads.hpp"
+#include "kerf/fem/rigid_motion_check.hpp"
+#include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/read_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
@@ -48,6 +51,34 @@ std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetM
     for (int v : nodes) conditions.push_back({{v}, spec.displacement_at(mesh.nodes.row(v).transpose())});
   }
   return conditions;
+}
+
+DofMap scene_dof_map(const Scene& scene, const TetMesh& mesh, std::ostream* warnings) {
+  const std::string file = scene.source.string();
+  std::vector<DirichletNodes> conditions = scene_dirichlet_nodes(scene, mesh);
+  if (const auto stray = nodes_without_tets(mesh); !stray.empty()) {
+    if (warnings) *warnings << "warning: " << stray.size() << " nodes belong to no tetrahedron and are held fixed\n";
+    conditions.push_back({stray, Eigen::Vector3d::Zero()});
+  }
+  DofMap dofs = make_dof_map(mesh.num_nodes(), conditions);
+  if (dofs.num_free == 0) throw InputError(file, "dirichlet", "every DOF is prescribed: nothing to solve");
+  if (const int free_motions = count_free_rigid_motions(mesh, dofs); free_motions > 0)
+    throw InputError(file, "dirichlet",
+                     "the conditions leave " + std::to_string(free_motions) +
+                         " rigid motions of the body free; fix at least three non-collinear nodes of every piece");
+  return dofs;
+}
+
+Eigen::VectorXd scene_external_loads(const Scene& scene, const TetMesh& mesh, const BoundaryFaces& boundary) {
+  Eigen::VectorXd f = assemble_gravity(mesh, scene.material.density, scene.gravity);
+  for (std::size_t i = 0; i < scene.traction.size(); ++i) {
+    const std::string field = "traction[" + std::to_string(i) + "].region";
+    std::vector<char> in_region(static_cast<std::size_t>(mesh.num_nodes()), 0);
+    for (int v : scene_region_nodes(scene, mesh, scene.traction[i].region, field)) in_region[static_cast<std::size_t>(v)] = 1;
+    if (add_uniform_traction(mesh, boundary, in_region, scene.traction[i].total_force, f) == 0.0)
+      throw InputError(scene.source.string(), field, "no boundary face has all its nodes in the region");
+  }
+  return f;
 }
 
 } // namespace kerf

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "kerf/fem/dof_map.hpp"
+#include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/mesh/tet_mesh.hpp"
 #include "kerf/scene/scene.hpp"
 
@@ -25,5 +26,17 @@ std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, con
 /// list, an entry with a rotation gives every node its own displacement (Q - I)(X - c) + t.
 /// Regions are checked as scene_region_nodes does.
 std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh);
+
+/// The DOF map of the scene's Dirichlet conditions, ready to solve with: nodes that belong to no
+/// tet are held fixed (with a warning), and a map that leaves a rigid motion of any piece of the
+/// body free (a singular stiffness matrix) is an InputError saying how many motions are free.
+/// We check before any factorisation, because a factorisation of a singular matrix may well
+/// "succeed" with round-off pivots and return garbage.
+DofMap scene_dof_map(const Scene& scene, const TetMesh& mesh, std::ostream* warnings);
+
+/// The scene's external loads as nodal forces (3#V): gravity over the volume and each traction
+/// spread by area over the boundary faces in its region (kerf::add_uniform_traction). A traction
+/// region with no boundary face is an InputError.
+Eigen::VectorXd scene_external_loads(const Scene& scene, const TetMesh& mesh, const BoundaryFaces& boundary);
 
 } // namespace kerf
