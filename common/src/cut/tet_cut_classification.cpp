@@ -1,0 +1,115 @@
+#include "kerf/cut/tet_cut_classification.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+namespace kerf {
+
+TetCutCase classify_tet_cut(const Eigen::Vector4d& lambda) {
+  int plus = 0, minus = 0, zero = 0;
+  for (int i = 0; i < 4; ++i) {
+    const int s = level_set_sign(lambda[i]);
+    plus += s > 0;
+    minus += s < 0;
+    zero += s == 0;
+  }
+  // Both signs present: the plane separates the tet (eq. 73). The number of corners on the plane
+  // tells the four cut cases apart, and for no zeros the split 1-3 versus 2-2.
+  if (plus > 0 && minus > 0) {
+    if (zero == 2) return TetCutCase::cut_through_edge;
+    if (zero == 1) return TetCutCase::cut_through_vertex;
+    return plus == 2 ? TetCutCase::cut_two_two : TetCutCase::cut_one_vertex_apart;
+  }
+  // One sign at most: the number of zeros says what the plane touches.
+  switch (zero) {
+  case 0: return TetCutCase::uncut;
+  case 1: return TetCutCase::touched_vertex;
+  case 2: return TetCutCase::touched_edge;
+  case 3: return TetCutCase::touched_face;
+  default: return TetCutCase::all_zero;
+  }
+}
+
+const char* to_string(TetCutCase c) {
+  switch (c) {
+  case TetCutCase::uncut: return "uncut";
+  case TetCutCase::touched_vertex: return "touched_vertex";
+  case TetCutCase::touched_edge: return "touched_edge";
+  case TetCutCase::touched_face: return "touched_face";
+  case TetCutCase::all_zero: return "all_zero";
+  case TetCutCase::cut_one_vertex_apart: return "cut_one_vertex_apart";
+  case TetCutCase::cut_two_two: return "cut_two_two";
+  case TetCutCase::cut_through_vertex: return "cut_through_vertex";
+  case TetCutCase::cut_through_edge: return "cut_through_edge";
+  }
+  return "?";
+}
+
+const char* to_string(ElementCutState s) {
+  switch (s) {
+  case ElementCutState::uncut: return "uncut";
+  case ElementCutState::touched: return "touched";
+  case ElementCutState::partially_cut: return "partially_cut";
+  case ElementCutState::completely_cut: return "completely_cut";
+  }
+  return "?";
+}
+
+ElementCutState classify_element_cut(const Eigen::Matrix<double, 4, 3>& X, const Eigen::Vector4d& lambda,
+                                     const RectangleCut& cut, double tolerance) {
+  const TetCutCase tet_case = classify_tet_cut(lambda);
+  const auto corner = [&](int i) -> Eigen::Vector3d { return X.row(i).transpose(); };
+
+  if (!is_cut(tet_case)) {
+    // Not separated: touched if a corner on the plane lies in the rectangle, else uncut.
+    for (int i = 0; i < 4; ++i)
+      if (lambda[i] == 0.0 && cut.contains_projection(corner(i), tolerance)) return ElementCutState::touched;
+    return ElementCutState::uncut;
+  }
+
+  // The cut points: corners on the plane, and the crossings of the edges with a + and a - end.
+  // The crossing is interpolated from the + end (lambda linear along the edge, the intercept
+  // theorem of section 5.2), as clip_tet does, so both agree on the point.
+  int inside = 0, total = 0;
+  const auto visit = [&](const Eigen::Vector3d& p) {
+    ++total;
+    inside += cut.contains_projection(p, tolerance);
+  };
+  for (int i = 0; i < 4; ++i)
+    if (lambda[i] == 0.0) visit(corner(i));
+  for (const auto& edge : tet_edge_corners) {
+    int a = edge[0], b = edge[1];
+    if (lambda[a] * lambda[b] >= 0.0) continue;
+    if (lambda[a] < 0.0) std::swap(a, b);
+    const double t = lambda[a] / (lambda[a] - lambda[b]);
+    visit(corner(a) + t * (corner(b) - corner(a)));
+  }
+  if (inside == total) return ElementCutState::completely_cut;
+  return inside > 0 ? ElementCutState::partially_cut : ElementCutState::uncut;
+}
+
+MeshCutClassification classify_mesh_cut(const TetMesh& mesh, const LevelSet& level_set, const RectangleCut& cut) {
+  if (level_set.lambda.size() != mesh.num_nodes())
+    throw std::invalid_argument("classify_mesh_cut: the level set must have one value per mesh node");
+  MeshCutClassification result;
+  const auto num_tets = static_cast<std::size_t>(mesh.num_tets());
+  result.tet_case.resize(num_tets);
+  result.state.resize(num_tets);
+  Eigen::Matrix<double, 4, 3> X;
+  Eigen::Vector4d lambda;
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    for (int a = 0; a < 4; ++a) {
+      const int node = mesh.tets(t, a);
+      X.row(a) = mesh.nodes.row(node);
+      lambda[a] = level_set.lambda[node];
+    }
+    const auto k = static_cast<std::size_t>(t);
+    result.tet_case[k] = classify_tet_cut(lambda);
+    result.state[k] = classify_element_cut(X, lambda, cut, level_set.snap_tolerance);
+    ++result.case_counts[static_cast<std::size_t>(result.tet_case[k])];
+    ++result.state_counts[static_cast<std::size_t>(result.state[k])];
+  }
+  return result;
+}
+
+} // namespace kerf
