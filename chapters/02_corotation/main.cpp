@@ -162,7 +162,10 @@ void CorotationalElasticity::solve() {
                       : scene_.quasi_static.rotation == "svd" ? kerf::RotationMethod::svd
                                                               : kerf::RotationMethod::automatic;
   settings.solver = scene_.solver;
-  result_ = kerf::solve_quasi_static(*model_, dofs_, f_ext_, settings);
+  // The prescribed displacements follow the scene's path: a turned region turns by lambda times
+  // its angle at load factor lambda, instead of sliding along the chord.
+  const auto path = [this](double lambda) { return kerf::scene_prescribed_displacements(scene_, mesh_, lambda); };
+  result_ = kerf::solve_quasi_static(*model_, dofs_, f_ext_, settings, path);
   u_ = result_.u;
   int fallbacks = 0;
   for (const auto& iteration : result_.history) fallbacks += iteration.warped_fallback;

@@ -5,6 +5,7 @@
 #include "kerf/fem/tet_stiffness.hpp"
 
 #include <Eigen/Dense>
+#include <cmath>
 
 namespace kerf {
 
@@ -43,6 +44,9 @@ CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& 
       tet4_gradients_[static_cast<std::size_t>(t)] = physical_shape_gradients<4>(X, tet4_shape_gradients(), det_J);
       tet4_volumes_[static_cast<std::size_t>(t)] = det_J / 6.0;
       tet4_stiffness_[static_cast<std::size_t>(t)] = tet4_stiffness(X, material);
+      const Eigen::Matrix<double, 3, 4> X_columns = X.transpose(); // node-major: x0, y0, z0, x1, ...
+      position_force_norm_ +=
+          (tet4_stiffness_[static_cast<std::size_t>(t)] * Eigen::Map<const Eigen::Matrix<double, 12, 1>>(X_columns.data())).squaredNorm();
     }
   } else {
     const TetQuadratureRule rule = tet_quadrature_rule(2);
@@ -53,8 +57,12 @@ CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& 
         tet10_gradients_.push_back(physical_shape_gradients<10>(X, tet10_shape_gradients(rule.points[q]), det_J));
         tet10_weights_.push_back(rule.weights[q] * det_J);
       }
+      const Eigen::Matrix<double, 30, 30> K = tet10_stiffness(X, material);
+      const Eigen::Matrix<double, 3, 10> X_columns = X.transpose();
+      position_force_norm_ += (K * Eigen::Map<const Eigen::Matrix<double, 30, 1>>(X_columns.data())).squaredNorm();
     }
   }
+  position_force_norm_ = std::sqrt(position_force_norm_);
 }
 
 CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,

@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace kerf {
 
 QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
-                                     const QuasiStaticSettings& settings) {
+                                     const QuasiStaticSettings& settings, const PrescribedPath& path) {
+  const auto prescribed_at = [&](double lambda) -> Eigen::VectorXd { return path ? path(lambda) : Eigen::VectorXd(lambda * dofs.prescribed); };
+  const double roundoff_floor = 10.0 * std::numeric_limits<double>::epsilon() * model.position_force_norm();
   const TetMesh& mesh = model.mesh();
   // The assembler lifts with the prescribed values of `increment`: the increment of u_c in the
   // first iteration of a step, zero afterwards.
@@ -24,7 +27,9 @@ QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMa
   for (int step = 1; step <= settings.load_steps; ++step) {
     const double lambda = double(step) / settings.load_steps;
     const double previous = double(step - 1) / settings.load_steps;
-    increment.prescribed = (lambda - previous) * dofs.prescribed;
+    increment.prescribed = prescribed_at(lambda) - prescribed_at(previous);
+    for (std::size_t d = 0; d < increment.free_index.size(); ++d)
+      if (increment.free_index[d] >= 0) increment.prescribed[static_cast<Eigen::Index>(d)] = 0.0;
     const Eigen::VectorXd load = dofs.restrict_to_free(lambda * f_ext);
     double scale = (lambda * f_ext).norm();
     bool step_converged = false;
@@ -39,7 +44,7 @@ QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMa
       scale = std::max({scale, f_int.norm(), rhs.norm()}); // rhs holds -K_fc du_c so far
       const double relative = scale > 0.0 ? residual.norm() / scale : residual.norm();
       NewtonIteration record{step, iteration, relative, false};
-      if (!first && relative <= settings.tolerance) {
+      if (!first && (relative <= settings.tolerance || residual.norm() <= roundoff_floor)) {
         result.history.push_back(record);
         step_converged = true;
         break;

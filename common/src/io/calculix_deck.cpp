@@ -76,6 +76,11 @@ void write_calculix_deck(const std::filesystem::path& inp, const TetMesh& mesh, 
   if (job.nodal_loads.size() != 0 && job.nodal_loads.size() != 3 * nv)
     throw std::invalid_argument("write_calculix_deck: nodal_loads must be empty or of size 3#V");
   const bool matrices = job.procedure == CalculixProcedure::matrix_storage;
+  if (matrices && job.nlgeom)
+    throw std::invalid_argument("write_calculix_deck: NLGEOM is for the static route only");
+  if (job.nlgeom && !(job.min_increment > 0.0 && job.min_increment <= job.initial_increment &&
+                      job.initial_increment <= job.max_increment && job.max_increment <= 1.0 && job.max_increments > 0))
+    throw std::invalid_argument("write_calculix_deck: NLGEOM needs 0 < min <= initial <= max <= 1 increments");
   if (matrices && !(job.material.density > 0.0))
     throw std::invalid_argument("write_calculix_deck: the matrix route needs a positive density (M g)");
 
@@ -107,7 +112,16 @@ void write_calculix_deck(const std::filesystem::path& inp, const TetMesh& mesh, 
     return;
   }
 
-  out << "*STEP\n*STATIC\n";
+  if (job.nlgeom) {
+    // Geometrically nonlinear: the loads are ramped from 0 to 1 over automatic increments of
+    // at most max_increment, and each increment is solved by Newton's method. ccx rejects the
+    // 17-digit form of these numbers on this card, so they are written with 6 digits.
+    std::ostringstream increments;
+    increments << job.initial_increment << ", 1, " << job.min_increment << ", " << job.max_increment;
+    out << "*STEP, NLGEOM, INC=" << job.max_increments << "\n*STATIC\n" << increments.str() << "\n";
+  } else {
+    out << "*STEP\n*STATIC\n";
+  }
   const DofMap dofs = make_dof_map(nv, job.dirichlet);
   bool any = false;
   for (Eigen::Index d = 0; d < 3 * nv; ++d) {

@@ -39,16 +39,19 @@ std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, con
   return nodes;
 }
 
-std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh) {
+std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh, double lambda) {
   std::vector<DirichletNodes> conditions;
   for (std::size_t i = 0; i < scene.dirichlet.size(); ++i) {
     const DirichletSpec& spec = scene.dirichlet[i];
     const std::vector<int> nodes = scene_region_nodes(scene, mesh, spec.region, "dirichlet[" + std::to_string(i) + "].region");
     if (!spec.has_rotation) {
-      conditions.push_back({nodes, spec.displacement});
+      conditions.push_back({nodes, lambda * spec.displacement});
       continue;
     }
-    for (int v : nodes) conditions.push_back({{v}, spec.displacement_at(mesh.nodes.row(v).transpose())});
+    DirichletSpec partial = spec;
+    partial.degrees *= lambda;
+    partial.displacement *= lambda;
+    for (int v : nodes) conditions.push_back({{v}, partial.displacement_at(mesh.nodes.row(v).transpose())});
   }
   return conditions;
 }
@@ -79,6 +82,13 @@ Eigen::VectorXd scene_external_loads(const Scene& scene, const TetMesh& mesh, co
       throw InputError(scene.source.string(), field, "no boundary face has all its nodes in the region");
   }
   return f;
+}
+
+Eigen::VectorXd scene_prescribed_displacements(const Scene& scene, const TetMesh& mesh, double lambda) {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  for (const DirichletNodes& condition : scene_dirichlet_nodes(scene, mesh, lambda))
+    for (int v : condition.nodes) u.segment<3>(3 * v) = condition.displacement;
+  return u;
 }
 
 } // namespace kerf

@@ -37,6 +37,11 @@ public:
   /// The corotated strain energy sum 1/2 (R^T x - X)^T K (R^T x - X): zero for any rigid motion.
   double energy(const Eigen::VectorXd& u, RotationMethod rotation) const;
 
+  /// sqrt(sum_e |K_e X_e|^2): the size of the element forces that cancel in f_int = R K (R^T x - X).
+  /// f_int carries a round-off error of about machine epsilon times this, whatever u is; the
+  /// quasi-static solver uses it as a floor for its tolerance.
+  double position_force_norm() const { return position_force_norm_; }
+
   const TetMesh& mesh() const { return mesh_; }
   const LinearMaterial& material() const { return material_; }
 
@@ -48,6 +53,7 @@ private:
   std::vector<double> tet4_volumes_;                           ///< Tet4: V per element
   std::vector<Eigen::Matrix<double, 10, 3>> tet10_gradients_;  ///< Tet10: grad N per element and point (4 per element)
   std::vector<double> tet10_weights_;                          ///< Tet10: w_q |det J| per element and point
+  double position_force_norm_ = 0.0;
 };
 
 } // namespace kerf

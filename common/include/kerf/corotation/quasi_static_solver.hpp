@@ -7,6 +7,7 @@
 #include "kerf/solve/linear_solver.hpp"
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace kerf {
@@ -38,8 +39,14 @@ struct QuasiStaticResult {
   CorotationStatistics last_statistics;
 };
 
-/// Finds u with f_int(u) = lambda f_ext on the free DOFs and u_c = lambda u_c_final, for
-/// lambda = 1/N, 2/N, ..., 1.
+/// The prescribed displacements (3#V; only the prescribed DOFs are read) at load factor
+/// lambda in [0, 1]. A straight ramp, lambda u_c, is right for translations but not for a turn:
+/// it moves the nodes along the chord, which squeezes a rotated face mid-way; a turn must be
+/// ramped by its angle (see kerf::scene_prescribed_displacements).
+using PrescribedPath = std::function<Eigen::VectorXd(double lambda)>;
+
+/// Finds u with f_int(u) = lambda f_ext on the free DOFs and u_c = path(lambda) (by default
+/// lambda u_c_final), for lambda = 1/N, 2/N, ..., 1.
 ///
 /// Each step starts from the previous equilibrium. The first iteration linearises about it with
 /// the prescribed increment lifted to the right-hand side (K_ff du_f = r_f - K_fc du_c), so that
@@ -47,8 +54,11 @@ struct QuasiStaticResult {
 /// with du_c = 0. The tangent is `settings.tangent`; when the consistent tangent is not positive
 /// definite (strong compression) that iteration uses the warped one, R K R^T, which always is.
 /// The force scale of a step is the largest of |lambda f_ext|, |f_int(u)| over all DOFs, and
-/// |K_fc du_c|: the forces that are in play, so that the tolerance is relative.
+/// |K_fc du_c|: the forces that are in play, so that the tolerance is relative. Below that, a
+/// residual under the round-off floor 10 eps |K X| (CorotationalModel::position_force_norm)
+/// counts as converged too: f_int is a difference of forces of size |K X|, and cannot be
+/// computed more accurately than that, however small the load.
 QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
-                                     const QuasiStaticSettings& settings);
+                                     const QuasiStaticSettings& settings, const PrescribedPath& path = {});
 
 } // namespace kerf

@@ -52,6 +52,16 @@ struct CalculixJob {
   /// nodal loads, so a traction must be given there as nodal_loads.
   std::vector<FacePressure> face_pressures;
   CalculixProcedure procedure = CalculixProcedure::static_solve; ///< which deck to write
+
+  /// Static route only: a geometrically nonlinear step (*STEP, NLGEOM). ccx then reads
+  /// *ELASTIC as a St. Venant-Kirchhoff material (Green-Lagrange strain, second Piola-Kirchhoff
+  /// stress) and ramps the loads over the step time 1 in automatic increments; loads are dead
+  /// (fixed direction). The .dat then holds one U block per increment, the last one the answer.
+  bool nlgeom = false;
+  double initial_increment = 0.1; ///< NLGEOM: first increment, a fraction of the step time 1
+  double min_increment = 1e-5;    ///< NLGEOM: ccx gives up below this increment
+  double max_increment = 0.1;     ///< NLGEOM: largest increment
+  int max_increments = 1000;      ///< NLGEOM: the step's INC= limit
 };
 
 /// Writes a CalculiX input deck (C3D4 or C3D10) for `mesh` and `job`.

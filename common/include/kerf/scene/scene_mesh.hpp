@@ -25,7 +25,13 @@ std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, con
 /// The scene's Dirichlet conditions as node lists with their displacements: a plain entry is one
 /// list, an entry with a rotation gives every node its own displacement (Q - I)(X - c) + t.
 /// Regions are checked as scene_region_nodes does.
-std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh);
+/// With load factor `lambda` (quasi-static ramps), a rotation turns by lambda times its angle and
+/// every translation is scaled by lambda.
+std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh, double lambda = 1.0);
+
+/// The prescribed displacements (3#V, zero elsewhere) at load factor lambda: the path along
+/// which a quasi-static solve ramps the scene's Dirichlet conditions (turns by their angle).
+Eigen::VectorXd scene_prescribed_displacements(const Scene& scene, const TetMesh& mesh, double lambda);
 
 /// The DOF map of the scene's Dirichlet conditions, ready to solve with: nodes that belong to no
 /// tet are held fixed (with a warning), and a map that leaves a rigid motion of any piece of the
