@@ -59,12 +59,19 @@ Eigen::SparseMatrix<double> read_triangle_file(const std::filesystem::path& file
   return a;
 }
 
-/// Writes a double with 17 significant digits, enough to round-trip any double exactly.
+/// Writes a double as precisely as a CalculiX field holds it. 17 significant digits round-trip
+/// any double exactly, but ccx reads at most 20 characters per number and silently cuts a longer
+/// one ("-1.2345678901234567e-05" loses its exponent), so we take the most digits that fit in
+/// 20 characters: 17 for most coordinates, 14 in the worst case (a negative number with a
+/// three-character exponent), a relative rounding of at most 5e-15.
 std::string exact(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
+  for (int digits = 17; digits > 1; --digits) {
+    std::ostringstream s;
+    s.precision(digits);
+    s << x;
+    if (s.str().size() <= 20) return s.str();
+  }
+  return std::to_string(x);
 }
 
 } // namespace
