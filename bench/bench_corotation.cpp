@@ -35,15 +35,14 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/solve/linear_solver.hpp"
+#include "measure.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -51,45 +50,11 @@
 
 namespace bench {
 
-using clock = std::chrono::steady_clock;
+using kerf_measure::best_time;
 
-/// The shortest of repeated runs of `work`: at least `min_repeats` runs and at least
-/// `min_total_seconds` of them, unless more than `max_total_seconds` have been spent.
-template <class Work>
-double best_time(Work&& work, int min_repeats = 5, double min_total_seconds = 1.0, double max_total_seconds = 20.0) {
-  double best = 1e300, total = 0.0;
-  for (int r = 0; r < min_repeats || total < min_total_seconds; ++r) {
-    const auto start = clock::now();
-    work();
-    const double t = std::chrono::duration<double>(clock::now() - start).count();
-    best = std::min(best, t);
-    total += t;
-    if (total > max_total_seconds) break;
-  }
-  return best;
-}
-
-/// The CPU's name from /proc/cpuinfo, or "unknown".
-std::string cpu_model() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-/// Today's date and time, YYYY-MM-DD HH:MM.
-std::string now_text() {
-  const std::time_t t = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M", std::localtime(&t));
-  return text;
-}
-
-/// The value of an environment variable, or "unset".
-std::string environment(const char* name) {
-  const char* value = std::getenv(name);
-  return value ? value : "unset";
-}
+/// Every measurement's rule, as the report states it: the best of at least five runs and of
+/// at least a second of repeats, unless 20 s have gone by.
+constexpr kerf_measure::Repeats usual_repeats{5, 1.0, 20.0};
 
 /// A batch of elements with everything add_corotated_point needs: the linear stiffness K of
 /// each rotation point, its shape gradients G, the reference and the current positions.
@@ -188,7 +153,7 @@ double nanoseconds_per_element(const ElementBatch<n>& batch, const ElementVarian
       }
       sink += f[0] + (variant.with_tangent ? Kt(0, 0) : 0.0);
     }
-  });
+  }, usual_repeats);
   return 1e9 * seconds / static_cast<double>(count);
 }
 
@@ -216,7 +181,7 @@ std::vector<ElementTiming> time_elements(int count, double& sink) {
         const std::size_t e = p / static_cast<std::size_t>(batch.points_per_element);
         sink += kerf::element_rotation(batch.x[e].transpose() * batch.G[p], method).R(0, 0);
       }
-    });
+    }, usual_repeats);
     rows.push_back({n == 4 ? "Tet4" : "Tet10", name, "rotation only (F and its polar factor)",
                     1e9 * seconds / static_cast<double>(batch.X.size())});
   }
@@ -278,7 +243,7 @@ BeamTimings time_beam(const Eigen::Vector3i& cells, double tip_load, int load_st
       assembler.set_zero();
       rhs = Eigen::VectorXd::Zero(dofs.num_free);
       model.assemble(u_bent, kerf::RotationMethod::automatic, tangent, f_int, &assembler, &rhs);
-    });
+    }, usual_repeats);
     (tangent == kerf::CorotationalTangent::consistent ? b.assembly_ns_per_tet_consistent : b.assembly_ns_per_tet_warped) =
         1e9 * seconds / static_cast<double>(mesh.num_tets());
   }
@@ -288,7 +253,7 @@ BeamTimings time_beam(const Eigen::Vector3i& cells, double tip_load, int load_st
   b.factorize_solve_seconds = best_time([&] {
     solver->factorize(assembler.matrix());
     solver->solve(rhs, du);
-  });
+  }, usual_repeats);
 
   // The target's configuration (Newton to 1e-9, CHOLMOD) with both tangents; then what a
   // simulation that needs less accuracy would take: Newton to 1e-4, and CG with an incomplete
@@ -314,7 +279,7 @@ BeamTimings time_beam(const Eigen::Vector3i& cells, double tip_load, int load_st
     s.newton_tolerance = v.newton_tolerance;
     s.load_steps = load_steps;
     kerf::QuasiStaticResult result;
-    s.seconds = best_time([&] { result = kerf::solve_quasi_static(model, dofs, f, settings); }, 3, 0.0, 30.0);
+    s.seconds = best_time([&] { result = kerf::solve_quasi_static(model, dofs, f, settings); }, {3, 0.0, 30.0});
     s.iterations = result.total_iterations;
     s.converged = result.converged;
     for (int v_top : top_nodes) s.tip_ux += result.u[3 * v_top] / static_cast<double>(top_nodes.size());
@@ -328,8 +293,9 @@ std::string report(const std::vector<ElementTiming>& elements, const BeamTimings
   std::ostringstream s;
   char line[512];
   s << "## bench_corotation\n\n"
-    << "- CPU: " << cpu_model() << "\n- date: " << now_text() << "\n- OPENBLAS_NUM_THREADS=" << environment("OPENBLAS_NUM_THREADS")
-    << ", OMP_NUM_THREADS=" << environment("OMP_NUM_THREADS")
+    << "- CPU: " << kerf_measure::cpu_model() << "\n- date: " << kerf_measure::now_text()
+    << "\n- OPENBLAS_NUM_THREADS=" << kerf_measure::environment("OPENBLAS_NUM_THREADS")
+    << ", OMP_NUM_THREADS=" << kerf_measure::environment("OMP_NUM_THREADS")
     << "\n- best of >= 5 runs and >= 1 s per measurement (the quasi-static solves: best of 3)\n\n";
   s << "### (a, b) One element: rotation + force (+ tangent), add_corotated_point\n\n"
     << "Batch of " << batch << " elements, F = R (I + E) with R random and |E_ij| <= 0.05. Tet10: four rotation points.\n\n"
@@ -361,19 +327,10 @@ std::string report(const std::vector<ElementTiming>& elements, const BeamTimings
 /// `bench_corotation [--quick] [--out FILE.md]`: see the header comment.
 int main(int argc, char** argv) {
   try {
-    bool quick = false;
-    std::string out;
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "--quick")
-        quick = true;
-      else if (arg == "--out" && i + 1 < argc)
-        out = argv[++i];
-      else {
-        std::cerr << "usage: bench_corotation [--quick] [--out FILE.md]\n";
-        return 2;
-      }
-    }
+    const std::optional<kerf_measure::RunOptions> options =
+        kerf_measure::parse_run_options(argc, argv, "bench_corotation [--quick] [--out FILE.md]", {});
+    if (!options) return 2;
+    const auto& [quick, out] = *options;
     const int batch = quick ? 256 : 4096;
     double sink = 0.0;
     std::vector<bench::ElementTiming> elements = bench::time_elements<4>(batch, sink);

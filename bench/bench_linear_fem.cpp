@@ -28,15 +28,15 @@
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/solve/linear_solver.hpp"
+#include "measure.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -45,46 +45,12 @@
 
 namespace bench {
 
-using clock = std::chrono::steady_clock;
+using kerf_measure::best_time;
+using kerf_measure::clock;
 
-/// The shortest of repeated runs of `work`: at least `min_repeats` runs and at least
-/// `min_total_seconds` of them, unless one run alone is so long (over `max_total_seconds`
-/// spent) that more would only cost time.
-template <class Work>
-double best_time(Work&& work, int min_repeats = 3, double min_total_seconds = 0.5, double max_total_seconds = 20.0) {
-  double best = 1e300, total = 0.0;
-  for (int r = 0; r < min_repeats || total < min_total_seconds; ++r) {
-    const auto start = clock::now();
-    work();
-    const double t = std::chrono::duration<double>(clock::now() - start).count();
-    best = std::min(best, t);
-    total += t;
-    if (total > max_total_seconds) break;
-  }
-  return best;
-}
-
-/// The CPU's name from /proc/cpuinfo, or "unknown".
-std::string cpu_model() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-/// Today's date and time, YYYY-MM-DD HH:MM.
-std::string now_text() {
-  const std::time_t t = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M", std::localtime(&t));
-  return text;
-}
-
-/// The value of an environment variable, or "unset".
-std::string environment(const char* name) {
-  const char* value = std::getenv(name);
-  return value ? value : "unset";
-}
+/// Every measurement's rule, as the report states it: the best of at least three runs and of
+/// at least half a second of repeats, unless 20 s have gone by.
+constexpr kerf_measure::Repeats usual_repeats{3, 0.5, 20.0};
 
 /// The chapter 1 beam with (1, 2, 6) k cells, Tet4 (order 1) or Tet10 (order 2).
 kerf::TetMesh beam_mesh(int k, int order) {
@@ -144,7 +110,7 @@ std::pair<double, int> time_cg(const std::string& type, const Eigen::SparseMatri
     Eigen::VectorXd u = Eigen::VectorXd::Zero(rhs.size());
     solver->solve(rhs, u);
     iterations = solver->iterations();
-  });
+  }, usual_repeats);
   return {seconds, iterations};
 }
 
@@ -165,9 +131,9 @@ Measurement measure(int k, int order, const std::string& ccx, const std::filesys
   m.blocks_per_second = num_tets / best_time([&] {
                           sink += order == 1 ? element_stiffness_sweep<4>(mesh, material)
                                              : element_stiffness_sweep<10>(mesh, material);
-                        });
+                        }, usual_repeats);
 
-  m.pattern_seconds = best_time([&] { kerf::SparseAssembler assembler(mesh.tets, dofs); });
+  m.pattern_seconds = best_time([&] { kerf::SparseAssembler assembler(mesh.tets, dofs); }, usual_repeats);
   kerf::SparseAssembler assembler(mesh.tets, dofs);
   m.stored_entries = assembler.num_stored_entries();
   const Eigen::VectorXd f_free = dofs.restrict_to_free(kerf::assemble_gravity(mesh, material.density, gravity));
@@ -176,7 +142,7 @@ Measurement measure(int k, int order, const std::string& ccx, const std::filesys
                                     assembler.set_zero();
                                     rhs = f_free;
                                     kerf::assemble_linear_stiffness(mesh, material, assembler, rhs);
-                                  });
+                                  }, usual_repeats);
   const Eigen::SparseMatrix<double>& K = assembler.matrix();
 
   // CHOLMOD, stage by stage: the best of three fresh solvers.
@@ -208,7 +174,7 @@ Measurement measure(int k, int order, const std::string& ccx, const std::filesys
     const std::string jobname = m.element + "_" + m.cells;
     std::filesystem::create_directories(work);
     kerf::write_calculix_deck(work / (jobname + ".inp"), mesh, job);
-    m.ccx_seconds = best_time([&] { kerf::run_calculix(ccx, work, jobname); }, 3, 0.0, 10.0);
+    m.ccx_seconds = best_time([&] { kerf::run_calculix(ccx, work, jobname); }, {3, 0.0, 10.0});
   }
   if (sink == 42.0) std::cout << ' '; // uses the sink; never true in practice
   return m;
@@ -219,8 +185,9 @@ std::string report(const std::vector<Measurement>& rows, const std::string& ccx)
   std::ostringstream s;
   char line[512];
   s << "## bench_linear_fem\n\n"
-    << "- CPU: " << cpu_model() << "\n- date: " << now_text() << "\n- OPENBLAS_NUM_THREADS=" << environment("OPENBLAS_NUM_THREADS")
-    << ", OMP_NUM_THREADS=" << environment("OMP_NUM_THREADS") << "\n- beam 0.03 x 0.06 x 0.2 m, cells (1,2,6)k, clamped at z = 0, "
+    << "- CPU: " << kerf_measure::cpu_model() << "\n- date: " << kerf_measure::now_text()
+    << "\n- OPENBLAS_NUM_THREADS=" << kerf_measure::environment("OPENBLAS_NUM_THREADS")
+    << ", OMP_NUM_THREADS=" << kerf_measure::environment("OMP_NUM_THREADS") << "\n- beam 0.03 x 0.06 x 0.2 m, cells (1,2,6)k, clamped at z = 0, "
     << "gravity; best of >= 3 runs and >= 0.5 s per measurement\n\n";
   s << "### Element stiffness and assembly\n\n"
     << "| element | cells | tets | DOFs | stored entries | stiffness blocks/s | assembled blocks/s | pattern + scatter map (s) |\n"
@@ -253,19 +220,10 @@ std::string report(const std::vector<Measurement>& rows, const std::string& ccx)
 /// `bench_linear_fem [--quick] [--out FILE.md]`: see the header comment.
 int main(int argc, char** argv) {
   try {
-    bool quick = false;
-    std::string out;
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "--quick")
-        quick = true;
-      else if (arg == "--out" && i + 1 < argc)
-        out = argv[++i];
-      else {
-        std::cerr << "usage: bench_linear_fem [--quick] [--out FILE.md]\n";
-        return 2;
-      }
-    }
+    const std::optional<kerf_measure::RunOptions> options =
+        kerf_measure::parse_run_options(argc, argv, "bench_linear_fem [--quick] [--out FILE.md]", {});
+    if (!options) return 2;
+    const auto& [quick, out] = *options;
     const std::string ccx = KERF_CCX;
     const std::filesystem::path work = std::filesystem::temp_directory_path() / "kerf_bench_calculix";
     // (order, k): Tet4 up to about 110k DOFs, Tet10 up to about 110k DOFs (target 2).

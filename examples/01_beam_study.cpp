@@ -33,6 +33,7 @@
 #include "kerf/mesh/point_locator.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/solve/linear_solver.hpp"
+#include "measure.hpp" // bench/measure.hpp: the command line shared with the benchmarks
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -44,6 +45,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -483,19 +485,10 @@ void run_calculix_comparison(const StudyPlan& plan, const std::filesystem::path&
 /// `01_beam_study [--quick] [--out DIR]`: see the header comment.
 int main(int argc, char** argv) {
   try {
-    bool quick = false;
-    std::filesystem::path out = "output/beam_study";
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "--quick")
-        quick = true;
-      else if (arg == "--out" && i + 1 < argc)
-        out = argv[++i];
-      else {
-        std::cerr << "usage: 01_beam_study [--quick] [--out DIR]\n";
-        return 2;
-      }
-    }
+    const std::optional<kerf_measure::RunOptions> options =
+        kerf_measure::parse_run_options(argc, argv, "01_beam_study [--quick] [--out DIR]", "output/beam_study");
+    if (!options) return 2;
+    const auto& [quick, out] = *options;
     std::filesystem::create_directories(out);
     const beam_study::StudyPlan plan = quick ? beam_study::quick_plan() : beam_study::full_plan();
     const auto start = beam_study::clock::now();

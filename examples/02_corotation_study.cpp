@@ -40,6 +40,7 @@
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/solve/linear_solver.hpp"
+#include "measure.hpp" // bench/measure.hpp: the command line shared with the benchmarks
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
@@ -52,6 +53,7 @@
 #include <iostream>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -599,19 +601,10 @@ std::string run_block_study(int cells, const std::vector<double>& depths_in_cell
 /// `02_corotation_study [--quick] [--out DIR]`: see the header comment.
 int main(int argc, char** argv) {
   try {
-    bool quick = false;
-    std::filesystem::path out = "output/corotation_study";
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "--quick")
-        quick = true;
-      else if (arg == "--out" && i + 1 < argc)
-        out = argv[++i];
-      else {
-        std::cerr << "usage: 02_corotation_study [--quick] [--out DIR]\n";
-        return 2;
-      }
-    }
+    const std::optional<kerf_measure::RunOptions> options =
+        kerf_measure::parse_run_options(argc, argv, "02_corotation_study [--quick] [--out DIR]", "output/corotation_study");
+    if (!options) return 2;
+    const auto& [quick, out] = *options;
     std::filesystem::create_directories(out);
     namespace study = corotation_study;
     const auto start = study::clock::now();

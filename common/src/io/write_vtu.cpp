@@ -1,6 +1,7 @@
 #include "kerf/io/write_vtu.hpp"
 
 #include "kerf/app/input_error.hpp"
+#include "mesh/vtk_error_catcher.hpp"
 
 #include <vtkCellType.h>
 #include <vtkCellData.h>
@@ -22,26 +23,6 @@
 
 namespace kerf {
 namespace {
-
-/// Listens to the writer's error and warning events: VTK reports a failed write this way
-/// instead of throwing, and with an observer attached it hands the message to us instead of
-/// printing it.
-class VtkMessageCatcher : public vtkCommand {
-public:
-  /// VTK's factory function, which vtkNew calls.
-  static VtkMessageCatcher* New() { return new VtkMessageCatcher; }
-
-  /// Keeps the first error, cut down to one line; warnings are dropped.
-  void Execute(vtkObject* /*caller*/, unsigned long event, void* call_data) override {
-    if (event != vtkCommand::ErrorEvent || !error.empty()) return;
-    error = call_data ? static_cast<const char*>(call_data) : "";
-    if (const auto colon = error.find("): "); colon != std::string::npos) error.erase(0, colon + 3);
-    std::replace_if(error.begin(), error.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-    error.erase(error.find_last_not_of(' ') + 1);
-  }
-
-  std::string error; ///< the first error, empty if none
-};
 
 /// Creates the folder a file goes into, so that `--out results/run1` works on a fresh checkout.
 void create_parent_folder(const std::filesystem::path& file) {
@@ -128,6 +109,7 @@ void write_vtu(const std::filesystem::path& file, const TetMesh& mesh,
 
   create_parent_folder(file);
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  // The catcher keeps the writer's first error (and its warnings, which a write ignores).
   vtkNew<VtkMessageCatcher> catcher;
   writer->AddObserver(vtkCommand::ErrorEvent, catcher);
   writer->AddObserver(vtkCommand::WarningEvent, catcher);

@@ -2,6 +2,7 @@
 
 #include "kerf/app/input_error.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
+#include "mesh/vtk_error_catcher.hpp"
 
 #include <vtkAlgorithm.h>
 #include <vtkCellType.h>
@@ -25,34 +26,6 @@
 
 namespace kerf {
 namespace {
-
-/// Listens to a VTK object's error and warning events. VTK reports problems this way instead
-/// of throwing; with an observer attached, VTK hands the message to us instead of printing it.
-class VtkMessageCatcher : public vtkCommand {
-public:
-  /// VTK's factory function, which vtkNew calls.
-  static VtkMessageCatcher* New() { return new VtkMessageCatcher; }
-
-  /// Keeps the first error and every warning, each cut down to one line.
-  void Execute(vtkObject* /*caller*/, unsigned long event, void* call_data) override {
-    const std::string text = one_line(static_cast<const char*>(call_data));
-    if (event == vtkCommand::ErrorEvent && error.empty()) error = text;
-    if (event == vtkCommand::WarningEvent) warnings.push_back(text);
-  }
-
-  std::string error;                 ///< the first error, empty if none
-  std::vector<std::string> warnings; ///< every warning, in order
-
-private:
-  /// VTK's messages start with "ClassName (0x1234): " and span lines; we keep the words.
-  static std::string one_line(const char* message) {
-    std::string text = message ? message : "";
-    if (const auto colon = text.find("): "); colon != std::string::npos) text.erase(0, colon + 3);
-    std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-    const auto last = text.find_last_not_of(' ');
-    return last == std::string::npos ? std::string() : text.substr(0, last + 1);
-  }
-};
 
 /// Runs a reader and returns its grid, turning the error events `catcher` hears into an InputError.
 vtkSmartPointer<vtkUnstructuredGrid> run_reader(vtkAlgorithm& reader, VtkMessageCatcher& catcher,
