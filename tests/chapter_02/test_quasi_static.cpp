@@ -7,6 +7,7 @@
 //    there in fewer iterations, and quadratically;
 // and the scene-file fields that ask for all this.
 #include "kerf/app/input_error.hpp"
+#include "kerf/corotation/corotational_model.hpp"
 #include "kerf/corotation/quasi_static_solver.hpp"
 #include "kerf/fem/assemble_loads.hpp"
 #include "kerf/fem/solve_linear_static.hpp"

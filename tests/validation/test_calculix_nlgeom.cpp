@@ -16,6 +16,7 @@
 #include "support/run_program.hpp"
 
 #include "kerf/corotation/polar_decomposition.hpp"
+#include "kerf/corotation/corotational_model.hpp"
 #include "kerf/corotation/quasi_static_solver.hpp"
 #include "kerf/fem/assemble_loads.hpp"
 #include "kerf/fem/solve_linear_static.hpp"

@@ -9,20 +9,19 @@
 
 namespace kerf {
 
-QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
+QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
                                      const QuasiStaticSettings& settings, const PrescribedPath& path) {
   const auto prescribed_at = [&](double lambda) -> Eigen::VectorXd { return path ? path(lambda) : Eigen::VectorXd(lambda * dofs.prescribed); };
   const double roundoff_floor = 10.0 * std::numeric_limits<double>::epsilon() * model.position_force_norm();
-  const TetMesh& mesh = model.mesh();
   // The assembler lifts with the prescribed values of `increment`: the increment of u_c in the
   // first iteration of a step, zero afterwards.
   DofMap increment = dofs;
-  SparseAssembler assembler(mesh.tets, increment);
+  SparseAssembler assembler(model.assembly_slots(), increment);
   auto solver = make_linear_solver(settings.solver);
   solver->analyze_pattern(assembler.matrix());
 
   QuasiStaticResult result;
-  result.u = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  result.u = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
   Eigen::VectorXd f_int, rhs, du_free;
   for (int step = 1; step <= settings.load_steps; ++step) {
     const double lambda = double(step) / settings.load_steps;

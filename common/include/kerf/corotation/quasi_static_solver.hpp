@@ -2,7 +2,7 @@
 /// @brief Equilibrium of the corotated body under large loads: load steps and Newton iterations.
 #pragma once
 
-#include "kerf/corotation/corotational_model.hpp"
+#include "kerf/corotation/quasi_static_model.hpp"
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/solve/linear_solver.hpp"
 
@@ -32,7 +32,7 @@ struct NewtonIteration {
 
 /// What the solver returns.
 struct QuasiStaticResult {
-  Eigen::VectorXd u;                  ///< displacements at the last load step (3#V)
+  Eigen::VectorXd u;                  ///< displacements at the last load step (3 model.num_dof_nodes())
   std::vector<NewtonIteration> history;
   bool converged = true;              ///< every step met the tolerance
   int total_iterations = 0;           ///< linear solves in all
@@ -55,10 +55,10 @@ using PrescribedPath = std::function<Eigen::VectorXd(double lambda)>;
 /// definite (strong compression) that iteration uses the warped one, R K R^T, which always is.
 /// The force scale of a step is the largest of |lambda f_ext|, |f_int(u)| over all DOFs, and
 /// |K_fc du_c|: the forces that are in play, so that the tolerance is relative. Below that, a
-/// residual under the round-off floor 10 eps |K X| (CorotationalModel::position_force_norm)
+/// residual under the round-off floor 10 eps |K X| (QuasiStaticModel::position_force_norm)
 /// counts as converged too: f_int is a difference of forces of size |K X|, and cannot be
 /// computed more accurately than that, however small the load.
-QuasiStaticResult solve_quasi_static(const CorotationalModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
+QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
                                      const QuasiStaticSettings& settings, const PrescribedPath& path = {});
 
 } // namespace kerf

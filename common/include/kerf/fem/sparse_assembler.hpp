@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cassert>
 #include <vector>
 
 namespace kerf {
@@ -21,7 +22,13 @@ namespace kerf {
 /// chapter 2 re-assembles every step and relies on it.
 class SparseAssembler {
 public:
-  /// Builds the pattern of K_ff and the scatter map for the tets of `tets` (#T by n).
+  /// Builds the pattern of K_ff and the scatter map for the elements of `tets` (#T by n).
+  ///
+  /// Each row lists the "DOF nodes" of one element, three DOFs each. For plain FEM these are
+  /// the tet's nodes. Chapter 3's XFEM elements list their 4 nodes and then the 4 enriched DOF
+  /// nodes (Paper 000 eq. 74), and a node that is not enriched leaves its slot empty: -1. An
+  /// element uses the leading slots up to its last non-empty one; a row whose enriched slots
+  /// are all empty is assembled as a plain 12x12 element.
   SparseAssembler(const TetMatrix& tets, const DofMap& dofs);
 
   /// The reduced matrix K_ff (num_free x num_free); its values are what was added since the
@@ -31,19 +38,34 @@ public:
   /// Sets every stored value of K_ff to zero, keeping the pattern.
   void set_zero();
 
-  /// Adds the element matrix Ke (3n x 3n, node-major) of tet t: its free-free entries to K_ff,
-  /// and -Ke(free, prescribed) u_prescribed to rhs_free (the lifted right-hand side).
+  /// The number of leading slots element t uses; its element matrix is 3 slots by 3 slots.
+  int slots_used(Eigen::Index t) const { return slots_used_[static_cast<std::size_t>(t)]; }
+
+  /// Adds the element matrix Ke (3 slots_used(t) square, node-major) of element t: its
+  /// free-free entries to K_ff, and -Ke(free, prescribed) u_prescribed to rhs_free (the lifted
+  /// right-hand side). Rows and columns of empty slots are ignored.
   template <int m>
   void add_element(Eigen::Index t, const Eigen::Matrix<double, m, m>& Ke, Eigen::VectorXd& rhs_free) {
-    const int* scatter = scatter_.data() + t * m * m;
+    add_element_matrix(t, Ke, rhs_free);
+  }
+
+  /// The same for any matrix expression, e.g. the leading block of a fixed-size XFEM element
+  /// matrix whose last slots are empty.
+  template <class Derived>
+  void add_element_matrix(Eigen::Index t, const Eigen::MatrixBase<Derived>& Ke, Eigen::VectorXd& rhs_free) {
+    const int m = static_cast<int>(Ke.rows());
+    assert(m == 3 * slots_used(t) && Ke.cols() == m);
+    const int* scatter = scatter_.data() + scatter_offset_[static_cast<std::size_t>(t)];
     double* values = K_.valuePtr();
     for (int c = 0; c < m; ++c) {
+      if (tets_(t, c / 3) < 0) continue; // an empty slot
       const int global_col = 3 * tets_(t, c / 3) + c % 3;
       if (dofs_.free_index[static_cast<std::size_t>(global_col)] < 0) {
         // A prescribed column moves to the right-hand side: f_f -= K_fc u_c.
         const double u_c = dofs_.prescribed[global_col];
         if (u_c != 0.0)
           for (int r = 0; r < m; ++r) {
+            if (tets_(t, r / 3) < 0) continue;
             const int free_row = dofs_.free_index[static_cast<std::size_t>(3 * tets_(t, r / 3) + r % 3)];
             if (free_row >= 0) rhs_free[free_row] -= Ke(r, c) * u_c;
           }
@@ -61,7 +83,9 @@ private:
   const TetMatrix& tets_;
   const DofMap& dofs_;
   Eigen::SparseMatrix<double> K_;
-  std::vector<int> scatter_; ///< per tet, (3n)^2 positions in K_.valuePtr() (column-major), -1 if not free-free
+  std::vector<int> slots_used_;          ///< per element, the leading slots it uses
+  std::vector<std::size_t> scatter_offset_; ///< per element, where its block of scatter_ starts
+  std::vector<int> scatter_; ///< per element, (3 slots)^2 positions in K_.valuePtr() (column-major), -1 if not free-free
 };
 
 } // namespace kerf

@@ -1,0 +1,196 @@
+#include "kerf/xfem/xfem_model.hpp"
+
+#include <Eigen/Dense>
+
+#include "kerf/fem/sparse_assembler.hpp"
+#include "kerf/fem/tet_shape_functions.hpp"
+#include "kerf/fem/tet_stiffness.hpp"
+#include "kerf/xfem/xfem_element.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace kerf {
+
+namespace {
+
+Eigen::Matrix<double, 4, 3> corner_rows(const TetMesh& mesh, Eigen::Index t) {
+  Eigen::Matrix<double, 4, 3> X;
+  for (int a = 0; a < 4; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
+  return X;
+}
+
+void record(const PolarDecomposition& polar, const Eigen::Matrix3d& F, CorotationStatistics& stats) {
+  if (F.determinant() <= 0.0) ++stats.inverted_points;
+  if (polar.iterations > 0 && !polar.converged) ++stats.higham_failures;
+  stats.max_higham_iterations = std::max(stats.max_higham_iterations, polar.iterations);
+}
+
+/// The element's DOFs [u_1..u_4, a_1..a_4] gathered from the global vector (zeros in empty slots).
+Eigen::Matrix<double, 24, 1> gather(const TetMatrix& slots, const Eigen::VectorXd& u, Eigen::Index t) {
+  Eigen::Matrix<double, 24, 1> ue = Eigen::Matrix<double, 24, 1>::Zero();
+  for (int s = 0; s < 8; ++s)
+    if (slots(t, s) >= 0) ue.segment<3>(3 * s) = u.segment<3>(3 * slots(t, s));
+  return ue;
+}
+
+void scatter_add(const TetMatrix& slots, Eigen::Index t, const Eigen::Matrix<double, 24, 1>& fe, Eigen::VectorXd& f) {
+  for (int s = 0; s < 8; ++s)
+    if (slots(t, s) >= 0) f.segment<3>(3 * slots(t, s)) += fe.segment<3>(3 * s);
+}
+
+} // namespace
+
+XfemModel::XfemModel(const TetMesh& mesh, const LinearMaterial& material, const Enrichment& enrichment)
+    : mesh_(mesh), material_(material), enrichment_(enrichment) {
+  if (mesh.order() != 1) throw std::invalid_argument("XfemModel: chapter 3's XFEM is for Tet4 meshes");
+  if (enrichment.enriched_index.size() != static_cast<std::size_t>(mesh.num_nodes()))
+    throw std::invalid_argument("XfemModel: the enrichment was made for another mesh");
+  const auto num_tets = static_cast<std::size_t>(mesh.num_tets());
+  slots_.setConstant(mesh.num_tets(), 8, -1);
+  slots_used_.assign(num_tets, 4);
+  stiffness_.resize(num_tets);
+  gradients_.resize(num_tets);
+  volumes_.resize(num_tets);
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    const auto k = static_cast<std::size_t>(t);
+    for (int a = 0; a < 4; ++a) {
+      const int v = mesh.tets(t, a);
+      slots_(t, a) = v;
+      const int enriched = enrichment.enriched_index[static_cast<std::size_t>(v)];
+      if (enriched >= 0) {
+        slots_(t, 4 + a) = static_cast<int>(mesh.num_nodes()) + enriched;
+        slots_used_[k] = 5 + a;
+      }
+    }
+    const Eigen::Matrix<double, 4, 3> X = corner_rows(mesh, t);
+    double det_J = 0.0;
+    gradients_[k] = physical_shape_gradients<4>(X, tet4_shape_gradients(), det_J);
+    volumes_[k] = det_J / 6.0;
+    stiffness_[k] = tet4_stiffness(X, material);
+    const Eigen::Matrix<double, 3, 4> X_columns = X.transpose();
+    position_force_norm_ += (stiffness_[k] * Eigen::Map<const Eigen::Matrix<double, 12, 1>>(X_columns.data())).squaredNorm();
+  }
+  position_force_norm_ = std::sqrt(position_force_norm_);
+}
+
+Eigen::Vector4d XfemModel::psi(Eigen::Index t, int side) const {
+  Eigen::Vector4d values = Eigen::Vector4d::Zero();
+  for (int a = 0; a < 4; ++a)
+    if (slots_(t, 4 + a) >= 0) values[a] = shifted_enrichment(side, enrichment_.node_sign[static_cast<std::size_t>(mesh_.tets(t, a))]);
+  return values;
+}
+
+Eigen::Vector4d XfemModel::shape_values(Eigen::Index t, const Eigen::Vector3d& x) const {
+  const Eigen::Vector3d offset = x - mesh_.nodes.row(mesh_.tets(t, 0)).transpose();
+  Eigen::Vector4d phi = gradients_[static_cast<std::size_t>(t)] * offset;
+  phi[0] += 1.0;
+  return phi;
+}
+
+Eigen::Vector3d XfemModel::side_displacement(const Eigen::VectorXd& u, Eigen::Index t, int corner, int side) const {
+  const int v = mesh_.tets(t, corner);
+  Eigen::Vector3d value = u.segment<3>(3 * v);
+  if (const int a_node = slots_(t, 4 + corner); a_node >= 0)
+    value += shifted_enrichment(side, enrichment_.node_sign[static_cast<std::size_t>(v)]) * u.segment<3>(3 * a_node);
+  return value;
+}
+
+void XfemModel::assemble_linear_stiffness(SparseAssembler& assembler, Eigen::VectorXd& rhs_free) const {
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    const auto k = static_cast<std::size_t>(t);
+    if (!has_enriched_corner(t)) {
+      assembler.add_element<12>(t, stiffness_[k], rhs_free);
+      continue;
+    }
+    const Eigen::Matrix<double, 24, 24> K_X =
+        xfem_tet4_stiffness(stiffness_[k], enrichment_.fraction_above[k], psi(t, +1), psi(t, -1));
+    const int m = 3 * slots_used_[k];
+    assembler.add_element_matrix(t, K_X.topLeftCorner(m, m), rhs_free);
+  }
+}
+
+CorotationStatistics XfemModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                         Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
+  CorotationStatistics stats;
+  f_int = Eigen::VectorXd::Zero(3 * num_dof_nodes());
+  const double mu = material_.mu(), lambda = material_.lambda();
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    const auto k = static_cast<std::size_t>(t);
+    const Eigen::Matrix<double, 4, 3> X = corner_rows(mesh_, t);
+    const Eigen::Matrix<double, 24, 1> ue = gather(slots_, u, t);
+    Eigen::Matrix<double, 24, 1> fe = Eigen::Matrix<double, 24, 1>::Zero();
+    Eigen::Matrix<double, 24, 24> Ke = Eigen::Matrix<double, 24, 24>::Zero();
+    // Eq. 64: each side's piece is a corotated Tet4 of the side's corner positions, weighted by
+    // its volume fraction (eq. 65/68 for the u rows, eq. 67/71 for the a rows via T^T).
+    for (const int side : {+1, -1}) {
+      const double fraction = side > 0 ? enrichment_.fraction_above[k] : 1.0 - enrichment_.fraction_above[k];
+      if (fraction <= 0.0) continue;
+      const Eigen::Matrix<double, 12, 24> T = side_operator(psi(t, side));
+      const Eigen::Matrix<double, 12, 1> u_side = T * ue;
+      Eigen::Matrix<double, 4, 3> x = X;
+      for (int a = 0; a < 4; ++a) x.row(a) += u_side.segment<3>(3 * a).transpose();
+      Eigen::Matrix<double, 12, 1> f_side = Eigen::Matrix<double, 12, 1>::Zero();
+      Eigen::Matrix<double, 12, 12> K_side = Eigen::Matrix<double, 12, 12>::Zero();
+      const Eigen::Matrix<double, 12, 12> K_fraction = fraction * stiffness_[k];
+      const PolarDecomposition polar = add_corotated_point<4>(K_fraction, gradients_[k], X, x, fraction * volumes_[k], mu, lambda,
+                                                              rotation, tangent, f_side, assembler ? &K_side : nullptr);
+      record(polar, x.transpose() * gradients_[k], stats);
+      fe += T.transpose() * f_side;
+      if (assembler) Ke += T.transpose() * K_side * T;
+    }
+    scatter_add(slots_, t, fe, f_int);
+    if (assembler) {
+      const int m = 3 * slots_used_[k];
+      assembler->add_element_matrix(t, Ke.topLeftCorner(m, m), *rhs_free);
+    }
+  }
+  return stats;
+}
+
+double XfemModel::energy(const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const {
+  double energy = 0.0;
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    const auto k = static_cast<std::size_t>(t);
+    const Eigen::Matrix<double, 4, 3> X = corner_rows(mesh_, t);
+    const Eigen::Matrix<double, 24, 1> ue = gather(slots_, u, t);
+    for (const int side : {+1, -1}) {
+      const double fraction = side > 0 ? enrichment_.fraction_above[k] : 1.0 - enrichment_.fraction_above[k];
+      if (fraction <= 0.0) continue;
+      const Eigen::Matrix<double, 12, 1> u_side = side_operator(psi(t, side)) * ue;
+      Eigen::Matrix<double, 4, 3> x = X;
+      for (int a = 0; a < 4; ++a) x.row(a) += u_side.segment<3>(3 * a).transpose();
+      Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+      if (corotated) R = element_rotation(Eigen::Matrix3d(x.transpose() * gradients_[k]), rotation).R;
+      Eigen::Matrix<double, 12, 1> d;
+      for (int a = 0; a < 4; ++a) d.segment<3>(3 * a) = R.transpose() * x.row(a).transpose() - X.row(a).transpose();
+      energy += 0.5 * fraction * d.dot(stiffness_[k] * d);
+    }
+  }
+  return energy;
+}
+
+DofMap make_xfem_dof_map(const XfemModel& model, const std::vector<DirichletNodes>& conditions) {
+  return make_dof_map(model.num_dof_nodes(), conditions);
+}
+
+Eigen::VectorXd solve_linear_xfem(const XfemModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
+                                  const SolverSettings& solver_settings) {
+  SparseAssembler assembler(model.assembly_slots(), dofs);
+  Eigen::VectorXd rhs = dofs.restrict_to_free(f_ext);
+  model.assemble_linear_stiffness(assembler, rhs);
+  auto solver = make_linear_solver(solver_settings);
+  solver->analyze_pattern(assembler.matrix());
+  try {
+    solver->factorize(assembler.matrix());
+  } catch (const std::runtime_error& error) {
+    throw std::runtime_error(std::string("the XFEM stiffness is singular (") + error.what() +
+                             "): does the cut separate a piece that no Dirichlet condition holds?");
+  }
+  Eigen::VectorXd u_free = Eigen::VectorXd::Zero(dofs.num_free);
+  solver->solve(rhs, u_free);
+  return dofs.expand(u_free);
+}
+
+} // namespace kerf
