@@ -33,13 +33,14 @@
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/fem/solve_linear_static.hpp"
 #include "kerf/io/probes_csv.hpp"
+#include "kerf/io/newton_history_csv.hpp"
 #include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_mesh.hpp"
+#include "kerf/scene/scene_quasi_static.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -153,15 +154,7 @@ void CorotationalElasticity::solve() {
     u_ = kerf::solve_linear_static(mesh_, scene_.material, dofs_, f_ext_, scene_.solver);
     return;
   }
-  kerf::QuasiStaticSettings settings;
-  settings.load_steps = scene_.quasi_static.load_steps;
-  settings.max_iterations = scene_.quasi_static.max_iterations;
-  settings.tolerance = scene_.quasi_static.tolerance;
-  settings.tangent = scene_.quasi_static.tangent == "warped" ? kerf::CorotationalTangent::warped : kerf::CorotationalTangent::consistent;
-  settings.rotation = scene_.quasi_static.rotation == "higham" ? kerf::RotationMethod::higham
-                      : scene_.quasi_static.rotation == "svd" ? kerf::RotationMethod::svd
-                                                              : kerf::RotationMethod::automatic;
-  settings.solver = scene_.solver;
+  const kerf::QuasiStaticSettings settings = kerf::scene_quasi_static_settings(scene_);
   // The prescribed displacements follow the scene's path: a turned region turns by lambda times
   // its angle at load factor lambda, instead of sliding along the chord.
   const auto path = [this](double lambda) { return kerf::scene_prescribed_displacements(scene_, mesh_, lambda); };
@@ -191,12 +184,7 @@ void CorotationalElasticity::output_results() const {
 
   if (!result_.history.empty()) {
     const std::filesystem::path csv = options_.out_dir / (scene_.name + "_newton.csv");
-    std::FILE* out = std::fopen(csv.string().c_str(), "w");
-    if (!out) throw kerf::InputError(csv.string(), "file", "cannot write the convergence history");
-    std::fprintf(out, "step,iteration,relative_residual,warped_fallback\n");
-    for (const auto& it : result_.history)
-      std::fprintf(out, "%d,%d,%.6e,%d\n", it.step, it.iteration, it.relative_residual, it.warped_fallback ? 1 : 0);
-    std::fclose(out);
+    kerf::write_newton_history_csv(csv, result_.history);
   }
 
   if (options_.probes_in) {

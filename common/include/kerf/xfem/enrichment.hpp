@@ -47,8 +47,10 @@ enum class TetSide : signed char {
 /// The chapter's simplification (Paper 000 section 4.3: "we let a cutting surface which
 /// partially intersects an element continue through it"): a partially cut tet is split by the
 /// whole plane, as if the rectangle reached through it. Rule 1 then leaves its nodes on the
-/// front side unenriched, so the opening closes at the first row of unenriched nodes: the cut
-/// acts somewhat longer than the rectangle, never shorter, by less than one element.
+/// front side unenriched, so the opening fades to zero at the first row of unenriched nodes.
+/// Where the cut runs along mesh faces and its front falls between two rows of nodes, rule 2
+/// ends the opening at the last row inside the rectangle. Either way the simulated cut
+/// differs from the rectangle by less than one element.
 ///
 /// Sides and signs. H_i = +1 where Lambda_i >= 0 and -1 where Lambda_i < 0: a node on the cut
 /// counts as above, as in eqs. 58-59 ("above the crack and on the crack line").
