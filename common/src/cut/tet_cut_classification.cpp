@@ -1,7 +1,11 @@
 #include "kerf/cut/tet_cut_classification.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 namespace kerf {
 
@@ -70,22 +74,59 @@ ElementCutState classify_element_cut(const Eigen::Matrix<double, 4, 3>& X, const
   // The cut points: corners on the plane, and the crossings of the edges with a + and a - end.
   // The crossing is interpolated from the + end (lambda linear along the edge, the intercept
   // theorem of section 5.2), as clip_tet does, so both agree on the point.
-  int inside = 0, total = 0;
-  const auto visit = [&](const Eigen::Vector3d& p) {
-    ++total;
-    inside += cut.contains_projection(p, tolerance);
-  };
+  std::vector<Eigen::Vector3d> points;
   for (int i = 0; i < 4; ++i)
-    if (lambda[i] == 0.0) visit(corner(i));
+    if (lambda[i] == 0.0) points.push_back(corner(i));
   for (const auto& edge : tet_edge_corners) {
     int a = edge[0], b = edge[1];
     if (lambda[a] * lambda[b] >= 0.0) continue;
     if (lambda[a] < 0.0) std::swap(a, b);
     const double t = lambda[a] / (lambda[a] - lambda[b]);
-    visit(corner(a) + t * (corner(b) - corner(a)));
+    points.push_back(corner(a) + t * (corner(b) - corner(a)));
   }
-  if (inside == total) return ElementCutState::completely_cut;
-  return inside > 0 ? ElementCutState::partially_cut : ElementCutState::uncut;
+  const bool all_inside = std::all_of(points.begin(), points.end(),
+                                      [&](const Eigen::Vector3d& p) { return cut.contains_projection(p, tolerance); });
+  if (all_inside) return ElementCutState::completely_cut;
+
+  // Partially cut only if the section and the rectangle overlap in an area, not just along
+  // the rectangle's edge (the cut's front) or at a corner. In the plane's coordinates (s, t)
+  // along the two edges, clip the section (a convex polygon, put in order by angle about its
+  // centroid) by the rectangle's four sides, and compare the area left with a strip of the
+  // tolerance's width along the section.
+  const Eigen::Vector3d e1 = cut.edge1().normalized(), e2 = cut.edge2().normalized();
+  const double length1 = cut.edge1().norm(), length2 = cut.edge2().norm();
+  std::vector<Eigen::Vector2d> polygon;
+  for (const Eigen::Vector3d& p : points) polygon.emplace_back((p - cut.origin()).dot(e1), (p - cut.origin()).dot(e2));
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& q : polygon) centre += q / static_cast<double>(polygon.size());
+  std::sort(polygon.begin(), polygon.end(), [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return std::atan2(p.y() - centre.y(), p.x() - centre.x()) < std::atan2(q.y() - centre.y(), q.x() - centre.x());
+  });
+  double diameter = 0.0;
+  for (const Eigen::Vector2d& p : polygon)
+    for (const Eigen::Vector2d& q : polygon) diameter = std::max(diameter, (p - q).norm());
+  // Sutherland-Hodgman against the half-planes s >= 0, s <= length1, t >= 0, t <= length2.
+  const std::array<std::pair<int, double>, 4> sides{{{0, 0.0}, {0, length1}, {1, 0.0}, {1, length2}}};
+  for (std::size_t k = 0; k < sides.size() && !polygon.empty(); ++k) {
+    const int axis = sides[k].first;
+    const double bound = sides[k].second, sign = k % 2 == 0 ? 1.0 : -1.0; // keep sign (x - bound) >= 0
+    std::vector<Eigen::Vector2d> clipped;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const Eigen::Vector2d& p = polygon[i];
+      const Eigen::Vector2d& q = polygon[(i + 1) % polygon.size()];
+      const double dp = sign * (p[axis] - bound), dq = sign * (q[axis] - bound);
+      if (dp >= 0.0) clipped.push_back(p);
+      if (dp * dq < 0.0) clipped.push_back(p + dp / (dp - dq) * (q - p));
+    }
+    polygon = std::move(clipped);
+  }
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d& p = polygon[i];
+    const Eigen::Vector2d& q = polygon[(i + 1) % polygon.size()];
+    twice_area += p.x() * q.y() - q.x() * p.y();
+  }
+  return std::abs(twice_area) / 2.0 > tolerance * diameter ? ElementCutState::partially_cut : ElementCutState::uncut;
 }
 
 MeshCutClassification classify_mesh_cut(const TetMesh& mesh, const LevelSet& level_set, const RectangleCut& cut) {

@@ -119,6 +119,19 @@ CorotationStatistics XfemModel::assemble(const Eigen::VectorXd& u, RotationMetho
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     const auto k = static_cast<std::size_t>(t);
     const Eigen::Matrix<double, 4, 3> X = corner_rows(mesh_, t);
+    if (!has_enriched_corner(t)) {
+      // Most tets: chapter 2's corotated Tet4, with no enriched DOFs to carry along.
+      Eigen::Matrix<double, 4, 3> x = X;
+      for (int a = 0; a < 4; ++a) x.row(a) += u.segment<3>(3 * mesh_.tets(t, a)).transpose();
+      Eigen::Matrix<double, 12, 1> f = Eigen::Matrix<double, 12, 1>::Zero();
+      Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
+      const PolarDecomposition polar = add_corotated_point<4>(stiffness_[k], gradients_[k], X, x, volumes_[k], mu, lambda, rotation,
+                                                              tangent, f, assembler ? &Kt : nullptr);
+      record(polar, x.transpose() * gradients_[k], stats);
+      for (int a = 0; a < 4; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
+      if (assembler) assembler->add_element<12>(t, Kt, *rhs_free);
+      continue;
+    }
     const Eigen::Matrix<double, 24, 1> ue = gather(slots_, u, t);
     Eigen::Matrix<double, 24, 1> fe = Eigen::Matrix<double, 24, 1>::Zero();
     Eigen::Matrix<double, 24, 24> Ke = Eigen::Matrix<double, 24, 24>::Zero();

@@ -98,9 +98,12 @@ const char* to_string(TetCutCase c);
 ///   one of pattern 12 has 4, and each cut point lies on two of them, so one point outside
 ///   leaves 2, never 3). Pattern 15 has only 2 separated faces, so ">= 3" could never hold and
 ///   we use "all" instead.
-/// - Partially cut: some but not all cut points in the rectangle. Uncut: none (the plane cuts
-///   the tet, the rectangle misses it; a rectangle lying wholly inside the tet, touching no edge,
-///   is uncut too, a known blind spot of the edge-based definition).
+/// - Partially cut: not all cut points in the closed rectangle, and the section overlaps the
+///   rectangle in an area (more than a strip of the tolerance's width along the section): a
+///   tet whose section only touches the rectangle's edge, the cut's front, lies beyond the cut,
+///   not on it. Uncut: otherwise (the plane cuts the tet, the rectangle misses it). Measuring
+///   the overlap, not counting cut points, also catches a rectangle corner poking into a large
+///   section.
 enum class ElementCutState { uncut, touched, partially_cut, completely_cut };
 
 /// The enumerator's name, for reports.
