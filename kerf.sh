@@ -47,8 +47,8 @@ jobs=$(nproc)
 case "${1:-demo}" in
   demo)
     install_missing_packages
-    configure_and_build release --target 01_linear_fem
-    ./build/release/bin/01_linear_fem --out output/01_linear_fem
+    configure_and_build release --target 03_xfem_heaviside
+    ./build/release/bin/03_xfem_heaviside --out output/03_xfem_heaviside
     ;;
   test)
     install_missing_packages
