@@ -25,12 +25,6 @@ Eigen::Matrix<double, n, 3> current_rows(const TetMesh& mesh, const Eigen::Vecto
   return x;
 }
 
-void record(const PolarDecomposition& polar, const Eigen::Matrix3d& F, CorotationStatistics& stats) {
-  if (F.determinant() <= 0.0) ++stats.inverted_points;
-  if (polar.iterations > 0 && !polar.converged) ++stats.higham_failures;
-  stats.max_higham_iterations = std::max(stats.max_higham_iterations, polar.iterations);
-}
-
 } // namespace
 
 CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& material) : mesh_(mesh), material_(material) {
@@ -79,7 +73,7 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
       Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
       const PolarDecomposition polar = add_corotated_point<4>(tet4_stiffness_[e], tet4_gradients_[e], X, x, tet4_volumes_[e], mu,
                                                               lambda, rotation, tangent, f, assembler ? &Kt : nullptr);
-      record(polar, x.transpose() * tet4_gradients_[e], stats);
+      stats.record(polar, x.transpose() * tet4_gradients_[e]);
       for (int a = 0; a < 4; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
       if (assembler) assembler->add_element<12>(t, Kt, *rhs_free);
     } else {
@@ -94,7 +88,7 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
         add_stiffness_integrand<10>(tet10_gradients_[p], tet10_weights_[p], mu, lambda, K_q);
         const PolarDecomposition polar = add_corotated_point<10>(K_q, tet10_gradients_[p], X, x, tet10_weights_[p], mu, lambda,
                                                                  rotation, tangent, f, assembler ? &Kt : nullptr);
-        record(polar, x.transpose() * tet10_gradients_[p], stats);
+        stats.record(polar, x.transpose() * tet10_gradients_[p]);
       }
       for (int a = 0; a < 10; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
       if (assembler) assembler->add_element<30>(t, Kt, *rhs_free);

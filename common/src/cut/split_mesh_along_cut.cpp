@@ -24,46 +24,6 @@ int tet10_edge_node(int i, int j) {
   return -1;
 }
 
-using Polygon = std::vector<Eigen::Vector2d>;
-
-// In-plane coordinates (m) of the projection of x, along edge1 and edge2 from the origin.
-Eigen::Vector2d in_plane(const RectangleCut& cut, const Eigen::Vector3d& x) {
-  const Eigen::Vector3d d = x - cut.origin();
-  return {d.dot(cut.edge1()) / cut.edge1().norm(), d.dot(cut.edge2()) / cut.edge2().norm()};
-}
-
-// One Sutherland-Hodgman step: the part of a convex polygon where p[axis] <= bound
-// (keep_below) or p[axis] >= bound.
-Polygon clip(const Polygon& polygon, int axis, double bound, bool keep_below) {
-  const auto inside = [&](const Eigen::Vector2d& p) { return keep_below ? p[axis] <= bound : p[axis] >= bound; };
-  const auto crossing = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) -> Eigen::Vector2d {
-    return a + (bound - a[axis]) / (b[axis] - a[axis]) * (b - a);
-  };
-  Polygon out;
-  const std::size_t n = polygon.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& previous = polygon[(i + n - 1) % n];
-    const Eigen::Vector2d& current = polygon[i];
-    if (inside(current)) {
-      if (!inside(previous)) out.push_back(crossing(previous, current));
-      out.push_back(current);
-    } else if (inside(previous)) {
-      out.push_back(crossing(previous, current));
-    }
-  }
-  return out;
-}
-
-double area(const Polygon& polygon) {
-  double twice = 0.0;
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
-    twice += a.x() * b.y() - a.y() * b.x();
-  }
-  return 0.5 * std::abs(twice);
-}
-
 // Throws if tet t has corners strictly on both sides of the plane and its section by the plane
 // overlaps the rectangle shrunk by `tolerance` with a positive area. A section that only
 // touches the rectangle's boundary (a tet beyond the front, next to the node layer that
@@ -78,34 +38,20 @@ void check_conforms(const TetMesh& mesh, const RectangleCut& cut, const std::vec
   if (!above || !below) return;
 
   // The section: corners on the plane, and the crossing points of edges from above to below.
-  // Its points are the corners of a convex polygon, so sorting them by angle orders them.
-  Polygon section;
+  std::vector<Eigen::Vector3d> section;
   for (int c = 0; c < 4; ++c) {
     const int v = mesh.tets(t, c);
-    if (std::abs(d[static_cast<std::size_t>(v)]) <= tolerance) section.push_back(in_plane(cut, mesh.nodes.row(v).transpose()));
+    if (std::abs(d[static_cast<std::size_t>(v)]) <= tolerance) section.push_back(mesh.nodes.row(v).transpose());
   }
   for (const auto& edge : tet_edge_corners) {
     const int i = mesh.tets(t, edge[0]), j = mesh.tets(t, edge[1]);
     const double di = d[static_cast<std::size_t>(i)], dj = d[static_cast<std::size_t>(j)];
     if ((di > tolerance && dj < -tolerance) || (di < -tolerance && dj > tolerance)) {
       const Eigen::Vector3d xi = mesh.nodes.row(i).transpose(), xj = mesh.nodes.row(j).transpose();
-      section.push_back(in_plane(cut, xi + di / (di - dj) * (xj - xi)));
+      section.push_back(xi + di / (di - dj) * (xj - xi));
     }
   }
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const auto& p : section) mean += p;
-  mean /= static_cast<double>(section.size());
-  std::sort(section.begin(), section.end(), [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return std::atan2(a.y() - mean.y(), a.x() - mean.x()) < std::atan2(b.y() - mean.y(), b.x() - mean.x());
-  });
-
-  const double length1 = cut.edge1().norm(), length2 = cut.edge2().norm();
-  if (length1 <= 2.0 * tolerance || length2 <= 2.0 * tolerance) return; // nothing left of the shrunk rectangle
-  section = clip(section, 0, tolerance, false);
-  section = clip(section, 0, length1 - tolerance, true);
-  section = clip(section, 1, tolerance, false);
-  section = clip(section, 1, length2 - tolerance, true);
-  if (section.size() >= 3 && area(section) > 0.0)
+  if (cut.overlap_area(section, tolerance) > 0.0)
     throw std::invalid_argument("split_mesh_along_cut: tet " + std::to_string(t) +
                                 " has corners on both sides of the cut's plane and its section by the plane overlaps the "
                                 "rectangle: the mesh does not conform to the cut (it needs a node layer on the cut, "

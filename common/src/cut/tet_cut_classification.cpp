@@ -89,44 +89,12 @@ ElementCutState classify_element_cut(const Eigen::Matrix<double, 4, 3>& X, const
   if (all_inside) return ElementCutState::completely_cut;
 
   // Partially cut only if the section and the rectangle overlap in an area, not just along
-  // the rectangle's edge (the cut's front) or at a corner. In the plane's coordinates (s, t)
-  // along the two edges, clip the section (a convex polygon, put in order by angle about its
-  // centroid) by the rectangle's four sides, and compare the area left with a strip of the
+  // the rectangle's edge (the cut's front) or at a corner: more than a strip of the
   // tolerance's width along the section.
-  const Eigen::Vector3d e1 = cut.edge1().normalized(), e2 = cut.edge2().normalized();
-  const double length1 = cut.edge1().norm(), length2 = cut.edge2().norm();
-  std::vector<Eigen::Vector2d> polygon;
-  for (const Eigen::Vector3d& p : points) polygon.emplace_back((p - cut.origin()).dot(e1), (p - cut.origin()).dot(e2));
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& q : polygon) centre += q / static_cast<double>(polygon.size());
-  std::sort(polygon.begin(), polygon.end(), [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
-    return std::atan2(p.y() - centre.y(), p.x() - centre.x()) < std::atan2(q.y() - centre.y(), q.x() - centre.x());
-  });
   double diameter = 0.0;
-  for (const Eigen::Vector2d& p : polygon)
-    for (const Eigen::Vector2d& q : polygon) diameter = std::max(diameter, (p - q).norm());
-  // Sutherland-Hodgman against the half-planes s >= 0, s <= length1, t >= 0, t <= length2.
-  const std::array<std::pair<int, double>, 4> sides{{{0, 0.0}, {0, length1}, {1, 0.0}, {1, length2}}};
-  for (std::size_t k = 0; k < sides.size() && !polygon.empty(); ++k) {
-    const int axis = sides[k].first;
-    const double bound = sides[k].second, sign = k % 2 == 0 ? 1.0 : -1.0; // keep sign (x - bound) >= 0
-    std::vector<Eigen::Vector2d> clipped;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-      const Eigen::Vector2d& p = polygon[i];
-      const Eigen::Vector2d& q = polygon[(i + 1) % polygon.size()];
-      const double dp = sign * (p[axis] - bound), dq = sign * (q[axis] - bound);
-      if (dp >= 0.0) clipped.push_back(p);
-      if (dp * dq < 0.0) clipped.push_back(p + dp / (dp - dq) * (q - p));
-    }
-    polygon = std::move(clipped);
-  }
-  double twice_area = 0.0;
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
-    const Eigen::Vector2d& p = polygon[i];
-    const Eigen::Vector2d& q = polygon[(i + 1) % polygon.size()];
-    twice_area += p.x() * q.y() - q.x() * p.y();
-  }
-  return std::abs(twice_area) / 2.0 > tolerance * diameter ? ElementCutState::partially_cut : ElementCutState::uncut;
+  for (const Eigen::Vector3d& p : points)
+    for (const Eigen::Vector3d& q : points) diameter = std::max(diameter, (p - q).norm());
+  return cut.overlap_area(points, 0.0) > tolerance * diameter ? ElementCutState::partially_cut : ElementCutState::uncut;
 }
 
 MeshCutClassification classify_mesh_cut(const TetMesh& mesh, const LevelSet& level_set, const RectangleCut& cut) {

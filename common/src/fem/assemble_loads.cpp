@@ -14,24 +14,28 @@ Eigen::VectorXd assemble_gravity(const TetMesh& mesh, double density, const Eige
   return f;
 }
 
-double add_uniform_traction(const TetMesh& mesh, const BoundaryFaces& boundary, const std::vector<char>& in_region,
-                            const Eigen::Vector3d& total_force, Eigen::VectorXd& f) {
-  std::vector<Eigen::Index> loaded;
-  double area = 0.0;
+RegionFaces faces_in_region(const TetMesh& mesh, const BoundaryFaces& boundary, const std::vector<char>& in_region) {
+  RegionFaces region;
   for (Eigen::Index face = 0; face < boundary.faces.rows(); ++face) {
     bool inside = true;
     for (int c = 0; c < boundary.faces.cols(); ++c) inside = inside && in_region[static_cast<std::size_t>(boundary.faces(face, c))];
     if (!inside) continue;
-    loaded.push_back(face);
-    area += face_area(mesh, boundary, face);
+    region.faces.push_back(face);
+    region.area += face_area(mesh, boundary, face);
   }
-  if (area == 0.0) return 0.0;
-  const Eigen::Vector3d traction = total_force / area;
-  for (Eigen::Index face : loaded) {
+  return region;
+}
+
+double add_uniform_traction(const TetMesh& mesh, const BoundaryFaces& boundary, const std::vector<char>& in_region,
+                            const Eigen::Vector3d& total_force, Eigen::VectorXd& f) {
+  const RegionFaces region = faces_in_region(mesh, boundary, in_region);
+  if (region.area == 0.0) return 0.0;
+  const Eigen::Vector3d traction = total_force / region.area;
+  for (Eigen::Index face : region.faces) {
     const Eigen::VectorXd s = face_shape_integrals(static_cast<int>(boundary.faces.cols()), face_area(mesh, boundary, face));
     for (int c = 0; c < boundary.faces.cols(); ++c) f.segment<3>(3 * boundary.faces(face, c)) += s[c] * traction;
   }
-  return area;
+  return region.area;
 }
 
 } // namespace kerf

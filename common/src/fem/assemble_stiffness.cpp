@@ -10,9 +10,7 @@ void assemble_linear_stiffness(const TetMesh& mesh, const LinearMaterial& materi
   // fixed-size matrices (12x12 or 30x30) that live on the stack.
   if (mesh.order() == 1) {
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-      Eigen::Matrix<double, 4, 3> X;
-      for (int a = 0; a < 4; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
-      assembler.add_element<12>(t, tet4_stiffness(X, material), rhs_free);
+      assembler.add_element<12>(t, tet4_stiffness(tet_corners(mesh, t), material), rhs_free);
     }
   } else {
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {

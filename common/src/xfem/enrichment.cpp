@@ -12,12 +12,6 @@ namespace kerf {
 
 namespace {
 
-Eigen::Matrix<double, 4, 3> corners(const TetMesh& mesh, Eigen::Index t) {
-  Eigen::Matrix<double, 4, 3> X;
-  for (int a = 0; a < 4; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
-  return X;
-}
-
 Eigen::Vector4d corner_values(const TetMesh& mesh, const LevelSet& level_set, Eigen::Index t) {
   Eigen::Vector4d lambda;
   for (int a = 0; a < 4; ++a) lambda[a] = level_set.lambda[mesh.tets(t, a)];
@@ -40,7 +34,7 @@ void snap_small_pieces(const TetMesh& mesh, const RectangleCut& cut, double mini
       const auto k = static_cast<std::size_t>(t);
       if (!is_cut(classes.tet_case[k]) || !cut_by_rectangle(classes.state[k])) continue;
       const Eigen::Vector4d lambda = corner_values(mesh, e.level_set, t);
-      const ClippedTet clipped = clip_tet(corners(mesh, t), lambda);
+      const ClippedTet clipped = clip_tet(tet_corners(mesh, t), lambda);
       const double fraction_a = clipped.V_a / (clipped.V_a + clipped.V_b);
       if (minimum_volume_fraction_met(fraction_a, 1.0 - fraction_a, minimum_fraction)) continue;
       const int small_side = fraction_a < 0.5 ? 1 : -1;
@@ -82,14 +76,14 @@ Enrichment make_enrichment(const TetMesh& mesh, const RectangleCut& cut, const E
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const auto k = static_cast<std::size_t>(t);
     const Eigen::Vector4d lambda = corner_values(mesh, e.level_set, t);
-    volume[k] = std::abs(signed_tet_volume(corners(mesh, t)));
+    volume[k] = std::abs(signed_tet_volume(tet_corners(mesh, t)));
     if (is_cut(e.classification.tet_case[k])) {
       if (!cut_by_rectangle(e.classification.state[k])) {
         e.tet_side[k] = TetSide::beyond;
         e.fraction_above[k] = 0.5; // never used: no enriched node touches a tet beyond the front
         continue;
       }
-      e.pieces[k] = clip_tet(corners(mesh, t), lambda);
+      e.pieces[k] = clip_tet(tet_corners(mesh, t), lambda);
       e.tet_side[k] = TetSide::cut;
       e.fraction_above[k] = e.pieces[k].V_a / (e.pieces[k].V_a + e.pieces[k].V_b);
       ++e.cut_tets;

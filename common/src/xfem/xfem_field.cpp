@@ -21,12 +21,16 @@ int side_of_point(const XfemModel& model, Eigen::Index t, const Eigen::Vector3d&
   return model.shape_values(t, x).dot(lambda) >= 0.0 ? +1 : -1;
 }
 
-Eigen::Vector3d xfem_displacement(const XfemModel& model, const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) {
-  const int side = side_of_point(model, t, x);
+Eigen::Vector3d xfem_displacement_on_side(const XfemModel& model, const Eigen::VectorXd& u, Eigen::Index t,
+                                          const Eigen::Vector3d& x, int side) {
   const Eigen::Vector4d phi = model.shape_values(t, x);
   Eigen::Vector3d value = Eigen::Vector3d::Zero();
   for (int a = 0; a < 4; ++a) value += phi[a] * model.side_displacement(u, t, a, side);
   return value;
+}
+
+Eigen::Vector3d xfem_displacement(const XfemModel& model, const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) {
+  return xfem_displacement_on_side(model, u, t, x, side_of_point(model, t, x));
 }
 
 Eigen::MatrixXd xfem_displacement_at(const XfemModel& model, const Eigen::VectorXd& u, const Eigen::MatrixXd& points,
@@ -70,12 +74,9 @@ void write_xfem_vtu(const std::filesystem::path& file, const XfemModel& model, c
     std::array<int, 4> tet{};
     for (int c = 0; c < 4; ++c) {
       const Eigen::Vector3d x = corners.row(c).transpose();
-      const Eigen::Vector4d phi = model.shape_values(t, x);
-      Eigen::Vector3d value = Eigen::Vector3d::Zero();
-      for (int a = 0; a < 4; ++a) value += phi[a] * model.side_displacement(u, t, a, side);
       tet[static_cast<std::size_t>(c)] = static_cast<int>(points.size());
       points.push_back(x);
-      displacements.push_back(value);
+      displacements.push_back(xfem_displacement_on_side(model, u, t, x, side));
     }
     tets.push_back(tet);
     side_of_tet.push_back(side);
@@ -105,9 +106,7 @@ void write_xfem_vtu(const std::filesystem::path& file, const XfemModel& model, c
       for (const auto& sub : e.pieces[k].above) add_piece(t, sub, +1);
       for (const auto& sub : e.pieces[k].below) add_piece(t, sub, -1);
     } else {
-      Eigen::Matrix<double, 4, 3> X;
-      for (int a = 0; a < 4; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
-      add_piece(t, X, e.tet_side[k] == TetSide::below ? -1 : +1);
+      add_piece(t, tet_corners(mesh, t), e.tet_side[k] == TetSide::below ? -1 : +1);
     }
   }
 

@@ -4,6 +4,7 @@
 
 #include "kerf/app/input_error.hpp"
 #include "kerf/cut/clip_tet.hpp"
+#include "kerf/fem/assemble_loads.hpp"
 #include "kerf/scene/scene_mesh.hpp"
 
 #include <cmath>
@@ -78,18 +79,10 @@ Eigen::VectorXd xfem_scene_loads(const Scene& scene, const XfemModel& model, con
     const std::string field = "traction[" + std::to_string(i) + "].region";
     std::vector<char> in_region(static_cast<std::size_t>(mesh.num_nodes()), 0);
     for (int v : scene_region_nodes(scene, mesh, scene.traction[i].region, field)) in_region[static_cast<std::size_t>(v)] = 1;
-    std::vector<Eigen::Index> faces;
-    double area = 0.0;
-    for (Eigen::Index face = 0; face < boundary.faces.rows(); ++face) {
-      bool inside = true;
-      for (int c = 0; c < 3; ++c) inside = inside && in_region[static_cast<std::size_t>(boundary.faces(face, c))];
-      if (!inside) continue;
-      faces.push_back(face);
-      area += face_area(mesh, boundary, face);
-    }
-    if (area == 0.0) throw InputError(scene.source.string(), field, "no boundary face has all its nodes in the region");
-    const Eigen::Vector3d traction = scene.traction[i].total_force / area;
-    for (const Eigen::Index face : faces) {
+    const RegionFaces region = faces_in_region(mesh, boundary, in_region);
+    if (region.area == 0.0) throw InputError(scene.source.string(), field, "no boundary face has all its nodes in the region");
+    const Eigen::Vector3d traction = scene.traction[i].total_force / region.area;
+    for (const Eigen::Index face : region.faces) {
       const Eigen::Index t = boundary.tet[static_cast<std::size_t>(face)];
       if (!model.has_enriched_corner(t)) continue;
       std::array<Eigen::Vector3d, 3> corners;

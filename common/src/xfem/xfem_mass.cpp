@@ -43,9 +43,7 @@ Eigen::SparseMatrix<double> assemble_xfem_mass(const XfemModel& model, double de
   Eigen::VectorXd unused = Eigen::VectorXd::Zero(all_free.num_free);
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const auto k = static_cast<std::size_t>(t);
-    Eigen::Matrix<double, 4, 3> X;
-    for (int a = 0; a < 4; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
-    const Eigen::Matrix4d M_whole = tet4_mass(X, density);
+    const Eigen::Matrix4d M_whole = tet4_mass(tet_corners(mesh, t), density);
     Eigen::Matrix<double, 24, 24> M = Eigen::Matrix<double, 24, 24>::Zero();
     for (const int side : {+1, -1}) {
       Eigen::Matrix4d M_side = Eigen::Matrix4d::Zero();

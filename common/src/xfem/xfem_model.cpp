@@ -15,18 +15,6 @@ namespace kerf {
 
 namespace {
 
-Eigen::Matrix<double, 4, 3> corner_rows(const TetMesh& mesh, Eigen::Index t) {
-  Eigen::Matrix<double, 4, 3> X;
-  for (int a = 0; a < 4; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
-  return X;
-}
-
-void record(const PolarDecomposition& polar, const Eigen::Matrix3d& F, CorotationStatistics& stats) {
-  if (F.determinant() <= 0.0) ++stats.inverted_points;
-  if (polar.iterations > 0 && !polar.converged) ++stats.higham_failures;
-  stats.max_higham_iterations = std::max(stats.max_higham_iterations, polar.iterations);
-}
-
 /// The element's DOFs [u_1..u_4, a_1..a_4] gathered from the global vector (zeros in empty slots).
 Eigen::Matrix<double, 24, 1> gather(const TetMatrix& slots, const Eigen::VectorXd& u, Eigen::Index t) {
   Eigen::Matrix<double, 24, 1> ue = Eigen::Matrix<double, 24, 1>::Zero();
@@ -64,7 +52,7 @@ XfemModel::XfemModel(const TetMesh& mesh, const LinearMaterial& material, const 
         slots_used_[k] = 5 + a;
       }
     }
-    const Eigen::Matrix<double, 4, 3> X = corner_rows(mesh, t);
+    const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
     double det_J = 0.0;
     gradients_[k] = physical_shape_gradients<4>(X, tet4_shape_gradients(), det_J);
     volumes_[k] = det_J / 6.0;
@@ -118,7 +106,7 @@ CorotationStatistics XfemModel::assemble(const Eigen::VectorXd& u, RotationMetho
   const double mu = material_.mu(), lambda = material_.lambda();
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     const auto k = static_cast<std::size_t>(t);
-    const Eigen::Matrix<double, 4, 3> X = corner_rows(mesh_, t);
+    const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh_, t);
     if (!has_enriched_corner(t)) {
       // Most tets: chapter 2's corotated Tet4, with no enriched DOFs to carry along.
       Eigen::Matrix<double, 4, 3> x = X;
@@ -127,7 +115,7 @@ CorotationStatistics XfemModel::assemble(const Eigen::VectorXd& u, RotationMetho
       Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
       const PolarDecomposition polar = add_corotated_point<4>(stiffness_[k], gradients_[k], X, x, volumes_[k], mu, lambda, rotation,
                                                               tangent, f, assembler ? &Kt : nullptr);
-      record(polar, x.transpose() * gradients_[k], stats);
+      stats.record(polar, x.transpose() * gradients_[k]);
       for (int a = 0; a < 4; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
       if (assembler) assembler->add_element<12>(t, Kt, *rhs_free);
       continue;
@@ -149,7 +137,7 @@ CorotationStatistics XfemModel::assemble(const Eigen::VectorXd& u, RotationMetho
       const Eigen::Matrix<double, 12, 12> K_fraction = fraction * stiffness_[k];
       const PolarDecomposition polar = add_corotated_point<4>(K_fraction, gradients_[k], X, x, fraction * volumes_[k], mu, lambda,
                                                               rotation, tangent, f_side, assembler ? &K_side : nullptr);
-      record(polar, x.transpose() * gradients_[k], stats);
+      stats.record(polar, x.transpose() * gradients_[k]);
       fe += T.transpose() * f_side;
       if (assembler) Ke += T.transpose() * K_side * T;
     }
@@ -166,7 +154,7 @@ double XfemModel::energy(const Eigen::VectorXd& u, bool corotated, RotationMetho
   double energy = 0.0;
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     const auto k = static_cast<std::size_t>(t);
-    const Eigen::Matrix<double, 4, 3> X = corner_rows(mesh_, t);
+    const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh_, t);
     const Eigen::Matrix<double, 24, 1> ue = gather(slots_, u, t);
     for (const int side : {+1, -1}) {
       const double fraction = side > 0 ? enrichment_.fraction_above[k] : 1.0 - enrichment_.fraction_above[k];

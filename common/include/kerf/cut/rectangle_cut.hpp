@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace kerf {
 
@@ -59,6 +60,15 @@ public:
   /// The (unsigned) Euclidean distance from x to the rectangle as a set, min |x - x*| over x*
   /// in the rectangle (the magnitude in eq. 72). Zero exactly on the rectangle.
   double distance_to_rectangle(const Eigen::Vector3d& x) const;
+
+  /// The area in which a convex polygon of the plane overlaps the rectangle shrunk by `inset`
+  /// on every side (enlarged for a negative inset): how much of a tet's section by the plane
+  /// the cut covers. The corners may come in any order (a convex polygon's corners, sorted by
+  /// angle about their mean, are in order); they are projected onto the plane first.
+  /// @param corners the polygon's corners (m), e.g. the cut points of a tet
+  /// @param inset   how far inside its edges the rectangle is taken (m)
+  /// @return the area (m^2), 0 for fewer than 3 corners or no overlap
+  double overlap_area(std::vector<Eigen::Vector3d> corners, double inset) const;
 
 private:
   Eigen::Vector3d origin_, edge1_, edge2_, normal_;

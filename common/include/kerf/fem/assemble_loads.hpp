@@ -14,6 +14,14 @@ namespace kerf {
 /// summed over the tets (the volume-force term of eq. 22).
 Eigen::VectorXd assemble_gravity(const TetMesh& mesh, double density, const Eigen::Vector3d& gravity);
 
+/// The boundary faces all of whose nodes are in a region, and their total area A (m^2): where a
+/// uniform traction total_force / A acts.
+struct RegionFaces {
+  std::vector<Eigen::Index> faces; ///< rows of BoundaryFaces::faces
+  double area = 0.0;               ///< their total area A (m^2)
+};
+RegionFaces faces_in_region(const TetMesh& mesh, const BoundaryFaces& boundary, const std::vector<char>& in_region);
+
 /// The traction t = total_force / A spread uniformly over the boundary faces all of whose
 /// nodes are in `in_region` (A is their total area): f_a = t int_F N_a dA (eq. 22's surface
 /// term). Adds to `f` (3#V) and returns A; A == 0 means no face was found, and nothing is added.

@@ -30,6 +30,13 @@ struct TetMesh {
   int order() const { return tets.cols() == 10 ? 2 : 1; }
 };
 
+/// The positions of the four corners of tet t, one row each (also the corners of a Tet10).
+inline Eigen::Matrix<double, 4, 3> tet_corners(const TetMesh& mesh, Eigen::Index t) {
+  Eigen::Matrix<double, 4, 3> X;
+  for (int a = 0; a < 4; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
+  return X;
+}
+
 /// The local corner pairs of the six tet edges, in the order of the Tet10 mid-edge nodes 4..9.
 inline constexpr int tet_edge_corners[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
 

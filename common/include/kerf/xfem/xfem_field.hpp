@@ -16,7 +16,12 @@ namespace kerf {
 /// with a point on the cut counting as above (as a node on it does, eqs. 58-59).
 int side_of_point(const XfemModel& model, Eigen::Index t, const Eigen::Vector3d& x);
 
-/// u(x) of eq. 42 at the point x of tet t, on the side where x lies: sum Phi_i(x) u_side,i.
+/// u(x) of eq. 42 at the point x of tet t as the piece on side `side` sees it:
+/// sum Phi_i(x) u_side,i, the linear field of that side's corner values (eq. 66).
+Eigen::Vector3d xfem_displacement_on_side(const XfemModel& model, const Eigen::VectorXd& u, Eigen::Index t,
+                                          const Eigen::Vector3d& x, int side);
+
+/// u(x) of eq. 42 at the point x of tet t, on the side where x lies (side_of_point).
 Eigen::Vector3d xfem_displacement(const XfemModel& model, const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x);
 
 /// u(x) at every row of `points` (#P by 3); rows outside the mesh get NaN and are counted.
