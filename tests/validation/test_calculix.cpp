@@ -5,6 +5,8 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 
+#include "support/calculix_path.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -15,14 +17,6 @@
 #include <string>
 
 namespace {
-
-/// The ccx found at configure time; the validation is mandatory, so a missing ccx fails.
-std::string ccx_path() {
-  const std::string ccx = KERF_CCX;
-  if (ccx.empty() || ccx.find("NOTFOUND") != std::string::npos)
-    FAIL("calculix-ccx is required for the validation tests (./kerf.sh installs it); reconfigure after installing");
-  return ccx;
-}
 
 /// A folder of the build tree for one test's decks and ccx's output.
 std::filesystem::path work_folder(const std::string& name) {
@@ -90,12 +84,12 @@ void check_routes_agree(const kerf::CalculixSolution& s, const std::string& what
 } // namespace
 
 TEST_CASE("CalculiX is installed") {
-  const std::string ccx = ccx_path();
+  const std::string ccx = support::ccx_path();
   CHECK_MESSAGE(std::filesystem::exists(ccx), "ccx was found at configure time but is gone: " << ccx);
 }
 
 TEST_CASE("CalculiX: the full-precision matrix route reproduces ccx's static solve (gravity and end load)") {
-  const std::string ccx = ccx_path();
+  const std::string ccx = support::ccx_path();
   for (int order : {1, 2}) {
     const kerf::TetMesh mesh = bar_mesh(order);
     const std::string element = order == 1 ? "C3D4" : "C3D10";
@@ -112,7 +106,7 @@ TEST_CASE("CalculiX: the full-precision matrix route reproduces ccx's static sol
 }
 
 TEST_CASE("CalculiX: a nonzero prescribed displacement is lifted the same way by both routes") {
-  const std::string ccx = ccx_path();
+  const std::string ccx = support::ccx_path();
   for (int order : {1, 2}) {
     const kerf::TetMesh mesh = bar_mesh(order);
     const std::string element = order == 1 ? "C3D4" : "C3D10";
@@ -126,7 +120,7 @@ TEST_CASE("CalculiX: a nonzero prescribed displacement is lifted the same way by
 }
 
 TEST_CASE("CalculiX: the stored K and M are symmetric, annihilate translations and weigh the bar") {
-  const std::string ccx = ccx_path();
+  const std::string ccx = support::ccx_path();
   for (int order : {1, 2}) {
     const kerf::TetMesh mesh = bar_mesh(order);
     const std::string element = order == 1 ? "C3D4" : "C3D10";
@@ -158,7 +152,7 @@ TEST_CASE("CalculiX: the stored K and M are symmetric, annihilate translations a
 }
 
 TEST_CASE("CalculiX: a broken deck gives a one-line error naming the log") {
-  const std::string ccx = ccx_path();
+  const std::string ccx = support::ccx_path();
   const auto folder = work_folder("broken");
   std::filesystem::create_directories(folder);
   {

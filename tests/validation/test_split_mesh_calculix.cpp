@@ -17,6 +17,8 @@
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 
+#include "support/calculix_path.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -25,14 +27,6 @@
 
 namespace {
 
-/// The ccx found at configure time; the validation is mandatory, so a missing ccx fails.
-std::string ccx_path() {
-  const std::string ccx = KERF_CCX;
-  if (ccx.empty() || ccx.find("NOTFOUND") != std::string::npos)
-    FAIL("calculix-ccx is required for the validation tests (./kerf.sh installs it); reconfigure after installing");
-  return ccx;
-}
-
 double relative_max_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& reference) {
   return (a - reference).cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff();
 }
@@ -40,7 +34,7 @@ double relative_max_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& 
 } // namespace
 
 TEST_CASE("A mesh split along a half-depth cut: Kerf agrees with CalculiX (C3D4, C3D10) under gravity") {
-  const std::string ccx = ccx_path();
+  const std::string ccx = support::ccx_path();
   const kerf::LinearMaterial material{300e3, 0.35, 1070};
   const Eigen::Vector3d gravity(9.81, 0, 0);
   // 2 x 4 x 8 cells: x step 0.015 (the front x = 0.015 is a node layer), z step 0.025 (the cut

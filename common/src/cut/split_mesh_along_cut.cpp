@@ -12,18 +12,6 @@ namespace kerf {
 
 namespace {
 
-// The face opposite corner a (as in boundary_faces.cpp; the orientation does not matter here).
-constexpr int face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-// The local Tet10 node on the edge between corners i and j (see tet_edge_corners).
-int tet10_edge_node(int i, int j) {
-  for (int e = 0; e < 6; ++e)
-    if ((tet_edge_corners[e][0] == i && tet_edge_corners[e][1] == j) ||
-        (tet_edge_corners[e][0] == j && tet_edge_corners[e][1] == i))
-      return 4 + e;
-  return -1;
-}
-
 // Throws if tet t has corners strictly on both sides of the plane and its section by the plane
 // overlaps the rectangle shrunk by `tolerance` with a positive area. A section that only
 // touches the rectangle's boundary (a tet beyond the front, next to the node layer that
@@ -89,7 +77,7 @@ SplitMesh split_mesh_along_cut(const TetMesh& mesh, const RectangleCut& cut, dou
       std::array<int, 3> key;
       bool in_plane_face = true;
       for (int c = 0; c < 3; ++c) {
-        key[static_cast<std::size_t>(c)] = mesh.tets(t, face_corners[a][c]);
+        key[static_cast<std::size_t>(c)] = mesh.tets(t, tet_outward_face_corners[a][c]);
         in_plane_face = in_plane_face && on_plane[node(key[static_cast<std::size_t>(c)])];
       }
       if (!in_plane_face) continue;
@@ -111,8 +99,8 @@ SplitMesh split_mesh_along_cut(const TetMesh& mesh, const RectangleCut& cut, dou
     std::vector<int> face_nodes(key.begin(), key.end());
     if (nodes_per_tet == 10)
       for (int c = 0; c < 3; ++c)
-        face_nodes.push_back(mesh.tets(face.tet, tet10_edge_node(face_corners[face.local_face][c],
-                                                                 face_corners[face.local_face][(c + 1) % 3])));
+        face_nodes.push_back(mesh.tets(face.tet, tet10_edge_node(tet_outward_face_corners[face.local_face][c],
+                                                                 tet_outward_face_corners[face.local_face][(c + 1) % 3])));
     for (int v : face_nodes) (inside ? touches_inside : touches_outside)[node(v)] = 1;
   }
 

@@ -7,23 +7,6 @@
 
 namespace kerf {
 
-namespace {
-
-// The face opposite corner a, listed so that its normal points away from corner a when the
-// tet is positively oriented (see check_tet_mesh.hpp).
-constexpr int outward_face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-// The local Tet10 node on the edge between corners i and j (see tet_edge_corners).
-int tet10_edge_node(int i, int j) {
-  for (int e = 0; e < 6; ++e)
-    if ((tet_edge_corners[e][0] == i && tet_edge_corners[e][1] == j) ||
-        (tet_edge_corners[e][0] == j && tet_edge_corners[e][1] == i))
-      return 4 + e;
-  return -1;
-}
-
-} // namespace
-
 BoundaryFaces boundary_faces(const TetMesh& mesh) {
   // A face seen twice is interior. std::map on the sorted corner triple keeps this simple and
   // deterministic; it runs once per mesh.
@@ -31,7 +14,7 @@ BoundaryFaces boundary_faces(const TetMesh& mesh) {
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     for (int a = 0; a < 4; ++a) {
       std::array<int, 3> key;
-      for (int c = 0; c < 3; ++c) key[c] = mesh.tets(t, outward_face_corners[a][c]);
+      for (int c = 0; c < 3; ++c) key[c] = mesh.tets(t, tet_outward_face_corners[a][c]);
       std::sort(key.begin(), key.end());
       auto [it, inserted] = seen.try_emplace(key, static_cast<int>(t), a);
       if (!inserted) it->second.first = -1;
@@ -44,10 +27,10 @@ BoundaryFaces boundary_faces(const TetMesh& mesh) {
     const auto [t, a] = owner;
     if (t < 0) continue;
     std::array<int, 6> row{};
-    for (int c = 0; c < 3; ++c) row[c] = mesh.tets(t, outward_face_corners[a][c]);
+    for (int c = 0; c < 3; ++c) row[c] = mesh.tets(t, tet_outward_face_corners[a][c]);
     if (nodes_per_face == 6)
       for (int c = 0; c < 3; ++c)
-        row[3 + c] = mesh.tets(t, tet10_edge_node(outward_face_corners[a][c], outward_face_corners[a][(c + 1) % 3]));
+        row[3 + c] = mesh.tets(t, tet10_edge_node(tet_outward_face_corners[a][c], tet_outward_face_corners[a][(c + 1) % 3]));
     rows.push_back(row);
     boundary.tet.push_back(t);
     boundary.local_face.push_back(a);

@@ -40,4 +40,16 @@ inline Eigen::Matrix<double, 4, 3> tet_corners(const TetMesh& mesh, Eigen::Index
 /// The local corner pairs of the six tet edges, in the order of the Tet10 mid-edge nodes 4..9.
 inline constexpr int tet_edge_corners[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
 
+/// The face opposite corner a, listed so that its normal points away from corner a when the
+/// tet is positively oriented (see check_tet_mesh.hpp).
+inline constexpr int tet_outward_face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+/// The local Tet10 node on the edge between corners i and j (4..9), -1 if i and j are no edge.
+inline int tet10_edge_node(int i, int j) {
+  for (int e = 0; e < 6; ++e)
+    if ((tet_edge_corners[e][0] == i && tet_edge_corners[e][1] == j) || (tet_edge_corners[e][0] == j && tet_edge_corners[e][1] == i))
+      return 4 + e;
+  return -1;
+}
+
 } // namespace kerf
