@@ -57,13 +57,13 @@ using kerf_measure::best_time;
 constexpr kerf_measure::Repeats usual_repeats{5, 1.0, 20.0};
 
 /// A batch of elements with everything add_corotated_point needs: the linear stiffness K of
-/// each rotation point, its shape gradients G, the reference and the current positions.
+/// each rotation point, its shape gradients G, the reference positions and the displacements.
 template <int n>
 struct ElementBatch {
   std::vector<Eigen::Matrix<double, 3 * n, 3 * n>> K; ///< one per rotation point
   std::vector<Eigen::Matrix<double, n, 3>> G;         ///< one per rotation point
   std::vector<double> weight;                         ///< the volume each rotation point stands for
-  std::vector<Eigen::Matrix<double, n, 3>> X, x;      ///< one per element
+  std::vector<Eigen::Matrix<double, n, 3>> X, u;      ///< reference positions and displacements, one per element
   int points_per_element = 1;
   double mu = 0.0, lambda = 0.0; ///< Lame constants, for the consistent tangent's stress
 };
@@ -105,7 +105,7 @@ ElementBatch<n> make_batch(int count, const kerf::LinearMaterial& material) {
     Eigen::Matrix<double, n, 3> x;
     for (int a = 0; a < n; ++a) x.row(a) = (R * (Eigen::Matrix3d::Identity() + E) * X.row(a).transpose() + translation).transpose();
     batch.X.push_back(X);
-    batch.x.push_back(x);
+    batch.u.push_back(x - X);
     if constexpr (n == 4) {
       double det_J = 0.0;
       batch.G.push_back(kerf::physical_shape_gradients<4>(X, kerf::tet4_shape_gradients(), det_J));
@@ -148,7 +148,7 @@ double nanoseconds_per_element(const ElementBatch<n>& batch, const ElementVarian
       if (variant.with_tangent) Kt.setZero();
       for (int q = 0; q < batch.points_per_element; ++q) {
         const std::size_t p = e * static_cast<std::size_t>(batch.points_per_element) + static_cast<std::size_t>(q);
-        kerf::add_corotated_point<n>(batch.K[p], batch.G[p], batch.X[e], batch.x[e], batch.weight[p], batch.mu, batch.lambda,
+        kerf::add_corotated_point<n>(batch.K[p], batch.G[p], batch.X[e], batch.u[e], batch.weight[p], batch.mu, batch.lambda,
                                      variant.rotation, variant.tangent, f, variant.with_tangent ? &Kt : nullptr);
       }
       sink += f[0] + (variant.with_tangent ? Kt(0, 0) : 0.0);
@@ -179,7 +179,7 @@ std::vector<ElementTiming> time_elements(int count, double& sink) {
     const double seconds = best_time([&] {
       for (std::size_t p = 0; p < batch.G.size(); ++p) {
         const std::size_t e = p / static_cast<std::size_t>(batch.points_per_element);
-        sink += kerf::element_rotation(batch.x[e].transpose() * batch.G[p], method).R(0, 0);
+        sink += kerf::element_rotation(Eigen::Matrix3d::Identity() + batch.u[e].transpose() * batch.G[p], method).R(0, 0);
       }
     }, usual_repeats);
     rows.push_back({n == 4 ? "Tet4" : "Tet10", name, "rotation only (F and its polar factor)",

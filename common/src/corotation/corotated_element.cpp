@@ -11,6 +11,7 @@ PolarDecomposition element_rotation(const Eigen::Matrix3d& F, RotationMethod met
     const int iterations = polar.iterations;
     polar = polar_svd(F);
     polar.iterations = iterations;
+    polar.higham_failed = true; // counted as a failure of Higham's iteration, though the SVD rescued the point
   }
   return polar;
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <type_traits>
 
 namespace kerf {
 
@@ -18,11 +19,12 @@ Eigen::Matrix<double, n, 3> element_rows(const NodeMatrix& nodes, const TetMatri
   return X;
 }
 
+/// The displacements of element t's n nodes, one row each.
 template <int n>
-Eigen::Matrix<double, n, 3> current_rows(const TetMesh& mesh, const Eigen::VectorXd& u, Eigen::Index t) {
-  Eigen::Matrix<double, n, 3> x;
-  for (int a = 0; a < n; ++a) x.row(a) = mesh.nodes.row(mesh.tets(t, a)) + u.segment<3>(3 * mesh.tets(t, a)).transpose();
-  return x;
+Eigen::Matrix<double, n, 3> displacement_rows(const TetMesh& mesh, const Eigen::VectorXd& u, Eigen::Index t) {
+  Eigen::Matrix<double, n, 3> u_e;
+  for (int a = 0; a < n; ++a) u_e.row(a) = u.segment<3>(3 * mesh.tets(t, a)).transpose();
+  return u_e;
 }
 
 } // namespace
@@ -68,17 +70,16 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
     if (mesh_.order() == 1) {
       const auto e = static_cast<std::size_t>(t);
       const Eigen::Matrix<double, 4, 3> X = element_rows<4>(mesh_.nodes, mesh_.tets, t);
-      const Eigen::Matrix<double, 4, 3> x = current_rows<4>(mesh_, u, t);
+      const Eigen::Matrix<double, 4, 3> u_e = displacement_rows<4>(mesh_, u, t);
       Eigen::Matrix<double, 12, 1> f = Eigen::Matrix<double, 12, 1>::Zero();
       Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
-      const PolarDecomposition polar = add_corotated_point<4>(tet4_stiffness_[e], tet4_gradients_[e], X, x, tet4_volumes_[e], mu,
-                                                              lambda, rotation, tangent, f, assembler ? &Kt : nullptr);
-      stats.record(polar, x.transpose() * tet4_gradients_[e]);
+      add_corotated_point<4>(tet4_stiffness_[e], tet4_gradients_[e], X, u_e, tet4_volumes_[e], mu, lambda, rotation, tangent, f,
+                             assembler ? &Kt : nullptr, &stats);
       for (int a = 0; a < 4; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
       if (assembler) assembler->add_element<12>(t, Kt, *rhs_free);
     } else {
       const Eigen::Matrix<double, 10, 3> X = element_rows<10>(mesh_.nodes, mesh_.tets, t);
-      const Eigen::Matrix<double, 10, 3> x = current_rows<10>(mesh_, u, t);
+      const Eigen::Matrix<double, 10, 3> u_e = displacement_rows<10>(mesh_, u, t);
       Eigen::Matrix<double, 30, 1> f = Eigen::Matrix<double, 30, 1>::Zero();
       Eigen::Matrix<double, 30, 30> Kt = Eigen::Matrix<double, 30, 30>::Zero();
       for (int q = 0; q < 4; ++q) {
@@ -86,9 +87,8 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
         // This point's share of the element stiffness (eq. 30 times its weight).
         Eigen::Matrix<double, 30, 30> K_q = Eigen::Matrix<double, 30, 30>::Zero();
         add_stiffness_integrand<10>(tet10_gradients_[p], tet10_weights_[p], mu, lambda, K_q);
-        const PolarDecomposition polar = add_corotated_point<10>(K_q, tet10_gradients_[p], X, x, tet10_weights_[p], mu, lambda,
-                                                                 rotation, tangent, f, assembler ? &Kt : nullptr);
-        stats.record(polar, x.transpose() * tet10_gradients_[p]);
+        add_corotated_point<10>(K_q, tet10_gradients_[p], X, u_e, tet10_weights_[p], mu, lambda, rotation, tangent, f,
+                                assembler ? &Kt : nullptr, &stats);
       }
       for (int a = 0; a < 10; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f.segment<3>(3 * a);
       if (assembler) assembler->add_element<30>(t, Kt, *rhs_free);
@@ -101,22 +101,22 @@ double CorotationalModel::energy(const Eigen::VectorXd& u, RotationMethod rotati
   // With f = K_R d the element force in the unrotated frame, the energy is 1/2 d^T K d.
   double energy = 0.0;
   const double mu = material_.mu(), lambda = material_.lambda();
-  const auto add = [&](const auto& K, const auto& G, const auto& X, const auto& x) {
-    const PolarDecomposition polar = element_rotation(Eigen::Matrix3d(x.transpose() * G), rotation);
-    Eigen::VectorXd d(K.rows());
-    for (Eigen::Index a = 0; a < X.rows(); ++a) d.segment<3>(3 * a) = polar.R.transpose() * x.row(a).transpose() - X.row(a).transpose();
+  const auto add = [&](const auto& K, const auto& G, const auto& X, const auto& u_e) {
+    constexpr int n = std::decay_t<decltype(X)>::RowsAtCompileTime;
+    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + u_e.transpose() * G;
+    const auto d = corotated_displacement<n>(element_rotation(F, rotation).R, X, u_e);
     energy += 0.5 * d.dot(K * d);
   };
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     if (mesh_.order() == 1) {
       const auto e = static_cast<std::size_t>(t);
-      add(tet4_stiffness_[e], tet4_gradients_[e], element_rows<4>(mesh_.nodes, mesh_.tets, t), current_rows<4>(mesh_, u, t));
+      add(tet4_stiffness_[e], tet4_gradients_[e], element_rows<4>(mesh_.nodes, mesh_.tets, t), displacement_rows<4>(mesh_, u, t));
     } else {
       for (int q = 0; q < 4; ++q) {
         const auto p = static_cast<std::size_t>(4 * t + q);
         Eigen::Matrix<double, 30, 30> K_q = Eigen::Matrix<double, 30, 30>::Zero();
         add_stiffness_integrand<10>(tet10_gradients_[p], tet10_weights_[p], mu, lambda, K_q);
-        add(K_q, tet10_gradients_[p], element_rows<10>(mesh_.nodes, mesh_.tets, t), current_rows<10>(mesh_, u, t));
+        add(K_q, tet10_gradients_[p], element_rows<10>(mesh_.nodes, mesh_.tets, t), displacement_rows<10>(mesh_, u, t));
       }
     }
   }

@@ -28,6 +28,7 @@ PolarDecomposition polar_higham(const Eigen::Matrix3d& F, double tolerance, int 
   result.S = X.transpose() * F;
   // An inverted F converges to a reflection: report it as not converged to a rotation.
   if (result.converged && X.determinant() < 0.0) result.converged = false;
+  result.higham_failed = !result.converged;
   return result;
 }
 

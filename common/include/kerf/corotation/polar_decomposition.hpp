@@ -12,6 +12,8 @@ struct PolarDecomposition {
   Eigen::Matrix3d S = Eigen::Matrix3d::Identity(); ///< the stretch, R^T F
   int iterations = 0;                               ///< Higham: Newton steps taken; SVD: 0
   bool converged = true;                            ///< Higham: false if det F <= 0 or no convergence
+  bool higham_failed = false;                       ///< Higham's iteration was tried and gave no rotation; stays set
+                                                    ///< when the SVD's rotation stands in for it (RotationMethod::automatic)
 };
 
 /// Higham's scaled Newton iteration for the orthogonal polar factor (Higham 1986, the method

@@ -3,28 +3,13 @@
 #pragma once
 
 #include "kerf/corotation/corotated_element.hpp"
+#include "kerf/corotation/corotation_statistics.hpp"
 #include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/mesh/tet_mesh.hpp"
 
 #include <Eigen/Core>
-#include <Eigen/LU>
-#include <algorithm>
 
 namespace kerf {
-
-/// What an assembly saw: how many rotation points were inverted and how Higham's iteration did.
-struct CorotationStatistics {
-  int inverted_points = 0;        ///< rotation points with det F <= 0
-  int higham_failures = 0;        ///< points where Higham's iteration gave no rotation
-  int max_higham_iterations = 0;  ///< the most Newton steps Higham's iteration took
-
-  /// Counts one rotation point: its deformation gradient F and the rotation found for it.
-  void record(const PolarDecomposition& polar, const Eigen::Matrix3d& F) {
-    if (F.determinant() <= 0.0) ++inverted_points;
-    if (polar.iterations > 0 && !polar.converged) ++higham_failures;
-    max_higham_iterations = std::max(max_higham_iterations, polar.iterations);
-  }
-};
 
 /// A body whose equilibrium solve_quasi_static() can find: chapter 2's corotated mesh
 /// (CorotationalModel) and chapter 3's cut one (XfemCorotationalModel).

@@ -26,7 +26,8 @@ struct QuasiStaticSettings {
 struct NewtonIteration {
   int step = 0;              ///< load step, 1-based
   int iteration = 0;         ///< iteration within the step, 0 = before the first update
-  double relative_residual = 0.0; ///< |r_f| / force scale
+  double relative_residual = 0.0; ///< |r_f - K_fc du_c| / force scale: at iteration 0, du_c is the step's
+                                  ///< prescribed increment; later it is 0 and this is |r_f| / scale
   bool warped_fallback = false;   ///< the consistent tangent was not positive definite here
 };
 
@@ -52,7 +53,9 @@ using PrescribedPath = std::function<Eigen::VectorXd(double lambda)>;
 /// the prescribed increment lifted to the right-hand side (K_ff du_f = r_f - K_fc du_c), so that
 /// the nodes next to a moving support move with it from the start; later iterations correct
 /// with du_c = 0. The tangent is `settings.tangent`; when the consistent tangent is not positive
-/// definite (strong compression) that iteration uses the warped one, R K R^T, which always is.
+/// definite (strong compression), as any solver finds out (LinearSolver::factorize and solve
+/// throw NotPositiveDefinite, CG may also fail to converge), that iteration uses the warped one,
+/// R K R^T, which always is.
 /// The force scale of a step is the largest of |lambda f_ext|, |f_int(u)| over all DOFs, and
 /// |K_fc du_c|: the forces that are in play, so that the tolerance is relative. Below that, a
 /// residual under the round-off floor 10 eps |K X| (QuasiStaticModel::position_force_norm)
