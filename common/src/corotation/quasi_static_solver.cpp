@@ -41,8 +41,13 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
       result.last_statistics = model.assemble(result.u, settings.rotation, settings.tangent, f_int, &assembler, &rhs);
       const Eigen::VectorXd residual = load - dofs.restrict_to_free(f_int);
       scale = std::max({scale, f_int.norm(), rhs.norm()}); // rhs holds -K_fc du_c so far
+      // The history records the residual of the system this iteration solves, r_f - K_fc du_c:
+      // at iteration 0 it holds the step's prescribed increment still to be applied (rhs is
+      // -K_fc du_c then, zero afterwards), so a step driven by a moving support does not look
+      // converged before it starts.
+      const double step_residual = (residual + rhs).norm();
+      NewtonIteration record{step, iteration, scale > 0.0 ? step_residual / scale : step_residual, false};
       const double relative = scale > 0.0 ? residual.norm() / scale : residual.norm();
-      NewtonIteration record{step, iteration, relative, false};
       if (!first && (relative <= settings.tolerance || residual.norm() <= roundoff_floor)) {
         result.history.push_back(record);
         step_converged = true;
@@ -53,21 +58,26 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
         break;
       }
       rhs += residual;
+      du_free = Eigen::VectorXd::Zero(dofs.num_free);
       try {
         solver->factorize(assembler.matrix());
+        solver->solve(rhs, du_free);
       } catch (const std::runtime_error&) {
+        // The consistent tangent is not positive definite (strong compression), or CG could not
+        // solve with it: whichever solver found out (a pivot, a curvature, no convergence), take
+        // this iteration with the warped stiffness R K R^T, which is positive definite whenever
+        // the body is held. A failure there is the caller's to see.
         if (settings.tangent != CorotationalTangent::consistent) throw;
-        // Not positive definite: take this step with the warped stiffness, which always is.
         assembler.set_zero();
         rhs = Eigen::VectorXd::Zero(dofs.num_free);
         model.assemble(result.u, settings.rotation, CorotationalTangent::warped, f_int, &assembler, &rhs);
         rhs += residual;
         solver->factorize(assembler.matrix());
+        du_free = Eigen::VectorXd::Zero(dofs.num_free);
+        solver->solve(rhs, du_free);
         record.warped_fallback = true;
       }
       result.history.push_back(record);
-      du_free = Eigen::VectorXd::Zero(dofs.num_free);
-      solver->solve(rhs, du_free);
       ++result.total_iterations;
       result.u += increment.expand(du_free); // free DOFs move by du_f, prescribed ones by du_c
       if (!result.u.allFinite()) throw std::runtime_error("the Newton iteration produced a non-finite displacement");

@@ -22,6 +22,23 @@ void silence_warnings(Eigen::CholmodSupernodalLLT<Matrix, UpLo>& decomposition) 
   decomposition.cholmod().print = 0;
 }
 
+// Whether a successful factorisation shows a positive definite matrix. A Cholesky
+// factorisation (CHOLMOD) exists only for one, so success says it all; an LDL^T exists for
+// indefinite matrices too, and then some pivot D_ii is negative.
+template <class Decomposition>
+bool pivots_positive(const Decomposition&) {
+  return true;
+}
+template <class Matrix, int UpLo, class Ordering>
+bool pivots_positive(const Eigen::SimplicialLDLT<Matrix, UpLo, Ordering>& decomposition) {
+  return decomposition.vectorD().size() == 0 || decomposition.vectorD().minCoeff() > 0.0;
+}
+
+void require_finite_right_hand_side(const Eigen::VectorXd& b) {
+  if (!b.allFinite())
+    throw std::invalid_argument("the right-hand side is not finite: an infinite or NaN load or prescribed displacement");
+}
+
 /// A direct Cholesky-type solver wrapping an Eigen decomposition (CHOLMOD or SimplicialLDLT).
 template <class Decomposition>
 class DirectSolver final : public LinearSolver {
@@ -31,11 +48,12 @@ public:
   void analyze_pattern(const Eigen::SparseMatrix<double>& A) override { decomposition_.analyzePattern(A); }
   void factorize(const Eigen::SparseMatrix<double>& A) override {
     decomposition_.factorize(A);
-    if (decomposition_.info() != Eigen::Success) throw std::runtime_error(not_positive_definite);
+    if (decomposition_.info() != Eigen::Success || !pivots_positive(decomposition_)) throw NotPositiveDefinite(not_positive_definite);
   }
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    require_finite_right_hand_side(b);
     x = decomposition_.solve(b);
-    if (decomposition_.info() != Eigen::Success || !x.allFinite()) throw std::runtime_error(not_positive_definite);
+    if (decomposition_.info() != Eigen::Success || !x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
   }
 
 private:
@@ -54,15 +72,25 @@ public:
   std::string name() const override { return name_; }
   void analyze_pattern(const Eigen::SparseMatrix<double>& A) override { cg_.analyzePattern(A); }
   void factorize(const Eigen::SparseMatrix<double>& A) override {
+    // A positive definite matrix has a positive diagonal (A_ii = e_i^T A e_i); Jacobi would
+    // divide by the diagonal and the incomplete Cholesky fail on it.
+    if (A.rows() > 0 && !(A.diagonal().minCoeff() > 0.0)) throw NotPositiveDefinite(not_positive_definite);
     cg_.factorize(A);
-    if (cg_.info() != Eigen::Success) throw std::runtime_error(not_positive_definite);
+    if (cg_.info() != Eigen::Success) throw NotPositiveDefinite(not_positive_definite);
   }
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    require_finite_right_hand_side(b);
     if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
     x = cg_.solveWithGuess(b, x);
-    if (cg_.info() != Eigen::Success || !x.allFinite())
+    if (!x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
+    if (cg_.info() != Eigen::Success)
       throw std::runtime_error(name_ + " did not converge in " + std::to_string(cg_.iterations()) +
                                " iterations (relative residual " + std::to_string(cg_.error()) + ")");
+    // With the residual r = b - A x, x^T A x = b . x - x . r <= b . x + |x| |r|, and
+    // |r| = error |b|. A positive definite A has x^T A x > 0: if even this bound is <= 0, A is
+    // proven not positive definite (CG on such a matrix can still "converge").
+    if (b.dot(x) + x.norm() * cg_.error() * b.norm() <= 0.0 && b.squaredNorm() > 0.0)
+      throw NotPositiveDefinite(not_positive_definite);
   }
   int iterations() const override { return static_cast<int>(cg_.iterations()); }
 

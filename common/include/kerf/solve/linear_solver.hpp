@@ -4,9 +4,19 @@
 
 #include <Eigen/SparseCore>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 namespace kerf {
+
+/// A matrix that was meant to be symmetric positive definite is not: a negative or zero pivot
+/// (CHOLMOD, LDLT), a non-positive diagonal entry (the CG preconditioners), or a CG solution x
+/// with b . x = x^T A x <= 0, which no positive definite A allows. Callers that can do something
+/// about it (the quasi-static solver's warped-tangent fallback) catch this type.
+class NotPositiveDefinite : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
 
 /// Which solver, and how hard an iterative one works.
 struct SolverSettings {
@@ -31,10 +41,17 @@ public:
   /// Symbolic analysis of A's pattern; call again only when the pattern changes.
   virtual void analyze_pattern(const Eigen::SparseMatrix<double>& A) = 0;
   /// Numeric factorisation (or preconditioner set-up) for A's values. Throws
-  /// std::runtime_error if A is not positive definite (e.g. too few Dirichlet conditions).
+  /// NotPositiveDefinite if that shows A is not positive definite. Every solver looks at its
+  /// own evidence: CHOLMOD's Cholesky fails on a non-positive pivot, LDLT's pivots D are
+  /// checked to be positive (Eigen's SimplicialLDLT itself only stops on an exactly zero one,
+  /// and would happily factorise an indefinite matrix), CG checks that the diagonal is positive.
+  /// A singular positive semidefinite matrix (a body no Dirichlet condition holds) can still
+  /// factorise with pivots of round-off size: check that before, with count_free_rigid_motions.
   virtual void factorize(const Eigen::SparseMatrix<double>& A) = 0;
   /// Solves A x = b. On entry x is the initial guess of an iterative solver (ignored by direct
-  /// ones); throws std::runtime_error if CG does not converge.
+  /// ones). Throws std::invalid_argument if b is not finite, NotPositiveDefinite if the result
+  /// proves A indefinite (CG: b . x <= 0) or is not finite, and std::runtime_error if CG does
+  /// not converge.
   virtual void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   /// Iterations of the last solve (1 for a direct solver).
   virtual int iterations() const { return 1; }
