@@ -40,6 +40,7 @@
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/scene/scene_quasi_static.hpp"
+#include "kerf/scene/scene_xfem_dofs.hpp"
 #include "kerf/xfem/enrichment.hpp"
 #include "kerf/xfem/xfem_field.hpp"
 #include "kerf/xfem/xfem_loads.hpp"
@@ -141,8 +142,13 @@ void CutElasticity::make_mesh() {
 // A piece smaller than the minimum volume fraction is not kept: its corners are moved onto the
 // cut instead, so that no enriched function lives on a sliver (the results chart why).
 //
-// Last the unknowns \f$[u; a]\f$ (eq. 74): the Dirichlet conditions hold \f$u_i\f$ only, since
-// with the shifted enrichment \f$u_i\f$ is the node's displacement.
+// Last the unknowns \f$[u; a]\f$ (eq. 74) and the Dirichlet conditions on them. With the shifted
+// enrichment \f$u_i\f$ is the node's displacement, but fixing \f$u_i\f$ alone holds only the
+// node: on a clamped face inside a cut tet, the far side's field
+// \f$\sum_j \Phi_j (u_j + \Psi_j a_j)\f$ would still slide. So a gripped enriched node gets
+// \f$a_i = 0\f$ too, and the clamp holds both flaps of the cut. Then the check of chapter 1, on
+// the cut body: every piece the cut leaves must be held by some condition, or there is no static
+// answer, and we say which piece before any solver can return garbage.
 void CutElasticity::setup_system() {
   enrichment_ = kerf::make_enrichment(mesh_, *cut_);
   const kerf::MeshCutClassification& classes = enrichment_.classification;
@@ -154,7 +160,7 @@ void CutElasticity::setup_system() {
          std::to_string(enrichment_.front_nodes) + " front nodes left unenriched, " + std::to_string(enrichment_.snapped_nodes) +
          " nodes moved onto the cut (minimum volume fraction " + std::to_string(enrichment_.minimum_volume_fraction) + ")");
   model_ = std::make_unique<kerf::XfemModel>(mesh_, scene_.material, enrichment_);
-  dofs_ = kerf::make_xfem_dof_map(*model_, kerf::scene_dirichlet_nodes(scene_, mesh_));
+  dofs_ = kerf::scene_xfem_dof_map(scene_, *model_, &std::cerr);
   report("system: " + std::to_string(dofs_.num_free) + " unknowns (" + std::to_string(3 * enrichment_.num_enriched()) +
          " of them enriched)");
 }

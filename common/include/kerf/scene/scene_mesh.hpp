@@ -33,6 +33,11 @@ std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetM
 /// which a quasi-static solve ramps the scene's Dirichlet conditions (turns by their angle).
 Eigen::VectorXd scene_prescribed_displacements(const Scene& scene, const TetMesh& mesh, double lambda);
 
+/// The scene's Dirichlet conditions (scene_dirichlet_nodes) and, after them, the nodes that
+/// belong to no tet, held fixed with one warning: such a node has no stiffness at all, and
+/// holding it changes nothing else.
+std::vector<DirichletNodes> scene_held_nodes(const Scene& scene, const TetMesh& mesh, std::ostream* warnings);
+
 /// The DOF map of the scene's Dirichlet conditions, ready to solve with: nodes that belong to no
 /// tet are held fixed (with a warning), and a map that leaves a rigid motion of any piece of the
 /// body free (a singular stiffness matrix) is an InputError saying how many motions are free.
