@@ -47,10 +47,7 @@ Eigen::Vector4d piece_shape_integrals(const XfemModel& model, Eigen::Index t, in
   const Enrichment& e = model.enrichment();
   const auto k = static_cast<std::size_t>(t);
   const TetSide tet_side = e.tet_side[k];
-  if (tet_side != TetSide::cut) {
-    const bool on_side = (side > 0) == (tet_side == TetSide::above);
-    return Eigen::Vector4d::Constant(on_side ? model.element_volume(t) / 4.0 : 0.0);
-  }
+  if (tet_side != TetSide::cut) return Eigen::Vector4d::Constant(e.piece_fraction(t, side) * model.element_volume(t) / 4.0);
   Eigen::Vector4d integral = Eigen::Vector4d::Zero();
   for (const Eigen::Matrix<double, 4, 3>& sub : side > 0 ? e.pieces[k].above : e.pieces[k].below) {
     const Eigen::Vector3d centroid = sub.colwise().mean().transpose();
@@ -97,7 +94,7 @@ Eigen::VectorXd xfem_scene_loads(const Scene& scene, const XfemModel& model, con
         const TetSide tet_side = e.tet_side[static_cast<std::size_t>(t)];
         if (tet_side == TetSide::cut)
           polygon = clip_triangle(corners, lambda, side);
-        else if ((side > 0) == (tet_side == TetSide::above))
+        else if (e.piece_fraction(t, side) > 0.0)
           polygon.assign(corners.begin(), corners.end());
         // Fan triangles; Phi_i is linear, so its value at a triangle's centroid times the area is exact.
         for (std::size_t p = 1; p + 1 < polygon.size(); ++p) {

@@ -44,12 +44,20 @@ Eigen::SparseMatrix<double> assemble_xfem_mass(const XfemModel& model, double de
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const auto k = static_cast<std::size_t>(t);
     const Eigen::Matrix4d M_whole = tet4_mass(tet_corners(mesh, t), density);
+    if (!model.has_enriched_corner(t)) {
+      // A tet with no enriched corner is chapter 1's (also one beyond the front: it has no sides).
+      Eigen::Matrix<double, 12, 12> M_plain = Eigen::Matrix<double, 12, 12>::Zero();
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) M_plain.block<3, 3>(3 * a, 3 * b) = M_whole(a, b) * Eigen::Matrix3d::Identity();
+      assembler.add_element<12>(t, M_plain, unused);
+      continue;
+    }
     Eigen::Matrix<double, 24, 24> M = Eigen::Matrix<double, 24, 24>::Zero();
     for (const int side : {+1, -1}) {
       Eigen::Matrix4d M_side = Eigen::Matrix4d::Zero();
       if (e.tet_side[k] == TetSide::cut)
         M_side = piece_mass(model, t, side, density);
-      else if ((side > 0) == (e.tet_side[k] != TetSide::below))
+      else if (e.piece_fraction(t, side) > 0.0)
         M_side = M_whole;
       const Eigen::Matrix<double, 12, 24> T = side_operator(model.psi(t, side));
       Eigen::Matrix<double, 12, 12> M_side_3 = Eigen::Matrix<double, 12, 12>::Zero();
@@ -69,14 +77,14 @@ Eigen::VectorXd xfem_lumped_mass(const XfemModel& model, double density) {
   Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const double corner_mass = density * model.element_volume(t) / 4.0; // eq. 81: m / n
-    const double fraction_above = e.fraction_above[static_cast<std::size_t>(t)];
+    for (int a = 0; a < 4; ++a) diagonal.segment<3>(3 * mesh.tets(t, a)).array() += corner_mass;
+    if (!model.has_enriched_corner(t)) continue;
+    const double fraction_above = e.piece_fraction(t, +1), fraction_below = e.piece_fraction(t, -1);
     const Eigen::Vector4d psi_above = model.psi(t, +1), psi_below = model.psi(t, -1);
-    for (int a = 0; a < 4; ++a) {
-      diagonal.segment<3>(3 * mesh.tets(t, a)).array() += corner_mass;
+    for (int a = 0; a < 4; ++a)
       if (const int a_node = model.assembly_slots()(t, 4 + a); a_node >= 0) // eq. 82
         diagonal.segment<3>(3 * a_node).array() +=
-            (fraction_above * psi_above[a] * psi_above[a] + (1.0 - fraction_above) * psi_below[a] * psi_below[a]) * corner_mass;
-    }
+            (fraction_above * psi_above[a] * psi_above[a] + fraction_below * psi_below[a] * psi_below[a]) * corner_mass;
   }
   return diagonal;
 }

@@ -19,6 +19,13 @@ struct EnrichmentSettings {
   /// the corners on that small side are moved onto the cut (their level set values set to 0),
   /// which turns the sliver into a cut along a face, edge or corner. See clip_tet.hpp for why.
   double minimum_volume_fraction = default_minimum_volume_fraction;
+  /// ... but no corner is moved by more than this fraction of the shortest mesh edge at it.
+  /// In a well-shaped tet a piece of fraction 1e-4 ends within about 0.05 of an edge length of
+  /// its corners, so the limit does not bite there; in a flat tet or next to much smaller
+  /// elements moving the node would distort the cut (and the neighbours' pieces) by more than
+  /// the sliver costs. Such a sliver is kept: the results of chapter 3 show that its
+  /// ill-conditioning is a scaling, which a Jacobi preconditioner removes.
+  double maximum_snap_fraction = 0.1;
 };
 
 /// How a tet relates to the cut, as far as the enrichment is concerned.
@@ -26,7 +33,8 @@ enum class TetSide : signed char {
   below = -1, ///< entirely on the negative side (corners with Lambda <= 0): H = -1 all over it
   cut = 0,    ///< split by the cut into two pieces of positive volume (eq. 73, within the rectangle)
   above = 1,  ///< entirely on the positive side (corners with Lambda >= 0): H = +1 all over it
-  beyond = 2, ///< split by the cut's PLANE outside the rectangle: beyond the cut's front, no jump in it
+  beyond = 2, ///< split by the cut's PLANE outside the rectangle: beyond the cut's front, no jump in it, and
+              ///< so no sides: the material is whole there, and no enriched node touches it (rule 1)
 };
 
 /// The enrichment of a Tet4 mesh by one planar cut.
@@ -34,26 +42,40 @@ enum class TetSide : signed char {
 /// Which nodes are enriched. The enriched function of node i is Phi_i Psi_i with
 /// Psi_i = (H(x) - H_i) / 2 (eq. 44). We enrich node i exactly when the cut splits the support
 /// of Phi_i (the tets around i) into two parts of positive volume, and the jump of H inside
-/// that support lies on the cut:
+/// that support lies on the cut. As three rules, checked in this order:
 /// 1. no tet around i is `beyond` the front. There the plane crosses the tet but the cut does
-///    not, so H has no value; such nodes are the crack-front nodes that chapter 5 gives
-///    branch functions (Paper 003 section 3.3: "sign enriched" versus "branch enriched" nodes);
+///    not, so the material is whole and the displacement continuous; yet Phi_i Psi_i would jump
+///    across the plane inside that tet, and across the face it shares with a cut neighbour.
+///    Enriching i would put a crack where there is none and make the space non-conforming.
 /// 2. every interior face through i that lies in the cut plane (all corners at Lambda = 0,
 ///    a tet above on one side and one below on the other) lies inside the rectangle, so that a
 ///    cut running exactly along mesh faces stops where the rectangle stops;
 /// 3. the tets around i hold volume on both sides of the cut. Otherwise Phi_i Psi_i would be
 ///    0 or -Phi_i everywhere: no new function, and a singular system.
 ///
-/// The chapter's simplification (Paper 000 section 4.3: "we let a cutting surface which
-/// partially intersects an element continue through it"): a partially cut tet is split by the
-/// whole plane, as if the rectangle reached through it. Rule 1 then leaves its nodes on the
-/// front side unenriched, so the opening fades to zero at the first row of unenriched nodes.
-/// Where the cut runs along mesh faces and its front falls between two rows of nodes, rule 2
-/// ends the opening at the last row inside the rectangle. Either way the simulated cut
-/// differs from the rectangle by less than one element.
+/// This rule is Kerf's own, and differs from both papers'. Paper 000 (eq. 73 and section 4.3)
+/// enriches every node of every cut element, partially cut ones included, and lets a partial
+/// cut "continue through" the element. Paper 003 (section 3.3) gives the nodes of partially cut
+/// elements branch (crack-tip) functions and sign-enriches only the nodes of completely cut
+/// elements that touch no partially cut one. Kerf sign-enriches the nodes of partially cut tets
+/// too (split by the whole plane, as Paper 000 does), but leaves unenriched every node that
+/// touches a tet the plane crosses outside the rectangle, which is a different set, one element
+/// further out than Paper 003's branch nodes. Chapter 5 gives these `front` nodes branch
+/// functions.
 ///
-/// Sides and signs. H_i = +1 where Lambda_i >= 0 and -1 where Lambda_i < 0: a node on the cut
-/// counts as above, as in eqs. 58-59 ("above the crack and on the crack line").
+/// What that makes of the front. The simulated cut ends at the last row of enriched nodes:
+/// the opening fades to zero across the first tets of unenriched nodes. That row depends on
+/// where the front falls among the nodes, not continuously on the front: as the front moves
+/// through an element the simulated cut stays put and then jumps by a whole element (chapter 3's
+/// results chart the jump). It can end up to one element short of the rectangle or reach up
+/// to one element past it, depending on whether the tets at the front are partially cut.
+/// Chapter 5's tip enrichment is the cure.
+///
+/// Sides and signs. H_i = +1 where Lambda_i > 0 and -1 where Lambda_i < 0. A node on the cut
+/// counts as above, as in eqs. 58-59 ("above the crack and on the crack line"), except a node
+/// that the minimum-fraction rule moved onto the cut: it keeps the side it came from, so the
+/// snapping does not pull nodes towards one side. (H_i only decides which side's field u_i is;
+/// span{Phi_i, Phi_i Psi_i} is the same for either sign.)
 struct Enrichment {
   LevelSet level_set;                          ///< nodal Lambda after the minimum-fraction snapping
   MeshCutClassification classification;       ///< of that level set against the rectangle
@@ -61,16 +83,24 @@ struct Enrichment {
   std::vector<int> enriched_index;             ///< #V: k if node i carries enriched DOFs a_k, else -1
   std::vector<int> enriched_nodes;             ///< N_enr node indices, in increasing order
   std::vector<TetSide> tet_side;               ///< #T
-  std::vector<double> fraction_above;          ///< #T values V_a / V (1 above, 0 below, in (0, 1) when cut)
+  std::vector<double> fraction_above;          ///< #T values V_a / V (1 above, 0 below, in (0, 1) when cut,
+                                               ///< NaN beyond the front: such a tet has no sides; use piece_fraction)
   std::vector<ClippedTet> pieces;              ///< #T; filled for cut tets only, empty otherwise
-  int snapped_nodes = 0;                       ///< nodes the minimum-fraction rule moved onto the cut
+  std::vector<int> snapped;                    ///< the nodes the minimum-fraction rule moved onto the cut
+  int snapped_nodes = 0;                       ///< snapped.size()
   double largest_snap = 0.0;                   ///< the largest |Lambda_i| so set to 0 (m)
+  int kept_slivers = 0;                        ///< tets below the minimum fraction kept, as snapping would move a node too far
   int front_nodes = 0;                         ///< nodes left unenriched by rule 1
   int cut_tets = 0;                            ///< tets with TetSide::cut
   double minimum_volume_fraction = 0.0;        ///< the threshold used
 
   Eigen::Index num_enriched() const { return static_cast<Eigen::Index>(enriched_nodes.size()); }
-  double fraction_below(Eigen::Index t) const { return 1.0 - fraction_above[static_cast<std::size_t>(t)]; }
+  /// V_side / V of tet t for side +1 (above) or -1 (below): 1 or 0 for a tet on one side, the
+  /// piece's fraction for a cut tet. The one answer to "how much of tet t is on this side",
+  /// for stiffness, mass and loads alike. A tet beyond the front has no sides: asking is a
+  /// logic error (std::logic_error), since no enriched node touches it.
+  double piece_fraction(Eigen::Index t, int side) const;
+  double fraction_below(Eigen::Index t) const { return piece_fraction(t, -1); }
 };
 
 /// Computes the enrichment of a Tet4 mesh by one rectangle cut.
