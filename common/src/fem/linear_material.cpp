@@ -1,6 +1,17 @@
 #include "kerf/fem/linear_material.hpp"
 
+#include <cmath>
+#include <stdexcept>
+
 namespace kerf {
+
+void LinearMaterial::check() const {
+  if (!(std::isfinite(young) && young > 0.0)) throw std::invalid_argument("LinearMaterial: young must be a positive finite number (Pa)");
+  if (!(poisson > -1.0 && poisson <= max_poisson))
+    throw std::invalid_argument("LinearMaterial: poisson must lie in (-1, 0.5 - 1e-6]: at 0.5 lambda is infinite");
+  if (!(std::isfinite(density) && density >= 0.0))
+    throw std::invalid_argument("LinearMaterial: density must be a non-negative finite number (kg/m^3)");
+}
 
 Eigen::Matrix<double, 6, 6> voigt_elasticity_matrix(const LinearMaterial& material) {
   const double lambda = material.lambda();

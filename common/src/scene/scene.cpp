@@ -197,8 +197,9 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
     scene.material.poisson = m.number("poisson", scene.material.poisson);
     scene.material.density = m.number("density", scene.material.density);
     if (!(scene.material.young > 0.0)) m.fail("material.young", "expected a positive number (Pa)");
-    if (!(scene.material.poisson > -1.0 && scene.material.poisson < 0.5))
-      m.fail("material.poisson", "expected a number in (-1, 0.5)");
+    if (!(scene.material.poisson > -1.0 && scene.material.poisson <= LinearMaterial::max_poisson))
+      m.fail("material.poisson", "expected a number in (-1, 0.5 - 1e-6]: at 0.5 the material is incompressible, lambda is "
+                                 "infinite, and a displacement formulation has no answer");
     if (!(scene.material.density >= 0.0)) m.fail("material.density", "expected a non-negative number (kg/m^3)");
   }
 

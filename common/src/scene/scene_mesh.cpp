@@ -25,6 +25,12 @@ TetMesh make_scene_mesh(const Scene& scene, std::ostream* warnings) {
   if (scene.mesh.order == 2 && mesh.order() == 1) mesh = tet10_from_tet4(mesh);
   if (scene.mesh.order == 1 && mesh.order() == 2)
     throw InputError(scene.source.string(), "mesh.order", "the file holds Tet10 elements; set \"order\": 2");
+  // Linear tets lock: a constant-strain element cannot change shape without changing volume,
+  // and near incompressibility every volume change costs lambda, which grows without bound.
+  if (mesh.order() == 1 && scene.material.poisson > near_incompressible_poisson && warnings)
+    *warnings << "warning: " << scene.source.string() << ": material.poisson = " << scene.material.poisson
+              << " with Tet4 elements, which lock in nearly incompressible material (chapter 1's locking study: at 0.4999 "
+                 "a Tet4 beam bends 3% as far as it should); use \"order\": 2\n";
   return mesh;
 }
 
@@ -56,14 +62,18 @@ std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetM
   return conditions;
 }
 
-DofMap scene_dof_map(const Scene& scene, const TetMesh& mesh, std::ostream* warnings) {
-  const std::string file = scene.source.string();
+std::vector<DirichletNodes> scene_held_nodes(const Scene& scene, const TetMesh& mesh, std::ostream* warnings) {
   std::vector<DirichletNodes> conditions = scene_dirichlet_nodes(scene, mesh);
   if (const auto stray = nodes_without_tets(mesh); !stray.empty()) {
     if (warnings) *warnings << "warning: " << stray.size() << " nodes belong to no tetrahedron and are held fixed\n";
     conditions.push_back({stray, Eigen::Vector3d::Zero()});
   }
-  DofMap dofs = make_dof_map(mesh.num_nodes(), conditions);
+  return conditions;
+}
+
+DofMap scene_dof_map(const Scene& scene, const TetMesh& mesh, std::ostream* warnings) {
+  const std::string file = scene.source.string();
+  DofMap dofs = make_dof_map(mesh.num_nodes(), scene_held_nodes(scene, mesh, warnings));
   if (dofs.num_free == 0) throw InputError(file, "dirichlet", "every DOF is prescribed: nothing to solve");
   if (const int free_motions = count_free_rigid_motions(mesh, dofs); free_motions > 0)
     throw InputError(file, "dirichlet",
@@ -73,13 +83,19 @@ DofMap scene_dof_map(const Scene& scene, const TetMesh& mesh, std::ostream* warn
 }
 
 Eigen::VectorXd scene_external_loads(const Scene& scene, const TetMesh& mesh, const BoundaryFaces& boundary) {
+  // JSON has no inf or NaN, but finite numbers can multiply to infinity (density 1e5 times
+  // gravity 1e305): say so here, by field, rather than as a solver failure later.
+  const std::string file = scene.source.string();
   Eigen::VectorXd f = assemble_gravity(mesh, scene.material.density, scene.gravity);
+  if (!f.allFinite()) throw InputError(file, "gravity", "the body force density * gravity is too large to represent (not finite)");
   for (std::size_t i = 0; i < scene.traction.size(); ++i) {
     const std::string field = "traction[" + std::to_string(i) + "].region";
     std::vector<char> in_region(static_cast<std::size_t>(mesh.num_nodes()), 0);
     for (int v : scene_region_nodes(scene, mesh, scene.traction[i].region, field)) in_region[static_cast<std::size_t>(v)] = 1;
     if (add_uniform_traction(mesh, boundary, in_region, scene.traction[i].total_force, f) == 0.0)
-      throw InputError(scene.source.string(), field, "no boundary face has all its nodes in the region");
+      throw InputError(file, field, "no boundary face has all its nodes in the region");
+    if (!f.allFinite())
+      throw InputError(file, "traction[" + std::to_string(i) + "].total_force", "the nodal forces are too large to represent (not finite)");
   }
   return f;
 }
