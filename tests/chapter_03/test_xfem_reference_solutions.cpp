@@ -376,3 +376,52 @@ TEST_CASE("xfem reference: a piece no condition holds is reported, and Tet10 or 
   const kerf::TetMesh other = beam({2, 3, 4});
   CHECK_THROWS_AS(kerf::XfemModel(other, material, e), std::invalid_argument);
 }
+
+TEST_CASE("xfem reference: snapping keeps each node's side and stops at a tenth of the shortest edge") {
+  const kerf::TetMesh mesh = beam({2, 3, 8});
+  // The plane 1e-6 of a layer height above the node layer z = 0.1: the corners on that layer
+  // are snapped up onto the cut (they were below it); the plane as far below z = 0.125 puts
+  // the corners on that layer (above it) onto the cut from the other side.
+  const double h = 0.025, delta = h * std::cbrt(1e-6);
+  for (const double z : {0.1 + delta, 0.125 - delta}) {
+    CAPTURE(z);
+    const kerf::RectangleCut cut = plane_cut({0.015, 0.03, z}, Eigen::Vector3d::UnitZ());
+    const kerf::Enrichment e = kerf::make_enrichment(mesh, cut);
+    REQUIRE(e.snapped_nodes > 0);
+    CHECK(e.snapped_nodes == static_cast<int>(e.snapped.size()));
+    for (const int v : e.snapped) {
+      CHECK(e.level_set.lambda[v] == 0.0);
+      // The side it came from, not "above" for all: before, every snapped node became H = +1.
+      CHECK(e.node_sign[static_cast<std::size_t>(v)] == (cut.signed_distance_to_plane(node(mesh, v)) > 0.0 ? 1 : -1));
+    }
+    // With the limit below the distance (delta = 2.5e-4 m; the shortest edge is 0.015 m, so a
+    // limit of 1e-3 of it is 1.5e-5 m), nothing is snapped and the slivers are kept: still
+    // solvable, and close to the snapped answer (both are within O(delta / L) of the layer cut).
+    kerf::EnrichmentSettings limited;
+    limited.maximum_snap_fraction = 1e-3;
+    const kerf::Enrichment kept = kerf::make_enrichment(mesh, cut, limited);
+    CHECK(kept.snapped_nodes == 0);
+    CHECK(kept.kept_slivers > 0);
+    const kerf::XfemModel model(mesh, material, kept);
+    const Eigen::VectorXd u = kerf::solve_linear_xfem(model, kerf::make_xfem_dof_map(model, both_ends(mesh)), xfem_gravity(model, body_force), {});
+    REQUIRE(u.allFinite());
+  }
+}
+
+TEST_CASE("xfem reference: a tet beyond the front has no sides, and no enriched corner") {
+  const kerf::TetMesh mesh = beam({3, 6, 19});
+  const kerf::Enrichment e = kerf::make_enrichment(mesh, kerf::RectangleCut({0, 0, 0.1}, {0.015, 0, 0}, {0, 0.06, 0}));
+  const kerf::XfemModel model(mesh, material, e);
+  int beyond = 0;
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    if (e.tet_side[static_cast<std::size_t>(t)] != kerf::TetSide::beyond) {
+      CHECK(e.piece_fraction(t, +1) + e.piece_fraction(t, -1) == doctest::Approx(1.0));
+      continue;
+    }
+    ++beyond;
+    CHECK(std::isnan(e.fraction_above[static_cast<std::size_t>(t)]));
+    CHECK_THROWS_AS(e.piece_fraction(t, +1), std::logic_error);
+    CHECK_FALSE(model.has_enriched_corner(t));
+  }
+  CHECK(beyond > 0);
+}
