@@ -13,10 +13,11 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
                                      const QuasiStaticSettings& settings, const PrescribedPath& path) {
   const auto prescribed_at = [&](double lambda) -> Eigen::VectorXd { return path ? path(lambda) : Eigen::VectorXd(lambda * dofs.prescribed); };
   const double roundoff_floor = 10.0 * std::numeric_limits<double>::epsilon() * model.position_force_norm();
-  // The assembler lifts with the prescribed values of `increment`: the increment of u_c in the
-  // first iteration of a step, zero afterwards.
+  // `increment` maps the free DOFs' correction du_f and the prescribed DOFs' increment du_c of
+  // an iteration to the whole vector: du_c is the step's increment of u_c in the first iteration
+  // of a step, zero afterwards. The assembler lifts with whatever we last set_prescribed().
   DofMap increment = dofs;
-  SparseAssembler assembler(model.assembly_slots(), increment);
+  SparseAssembler assembler(model.assembly_slots(), dofs);
   auto solver = make_linear_solver(settings.solver);
   solver->analyze_pattern(assembler.matrix());
 
@@ -38,6 +39,7 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
       rhs = Eigen::VectorXd::Zero(dofs.num_free);
       const bool first = iteration == 0;
       if (!first) increment.prescribed.setZero();
+      assembler.set_prescribed(increment.prescribed); // lift K_fc du_c in the first iteration only
       result.last_statistics = model.assemble(result.u, settings.rotation, settings.tangent, f_int, &assembler, &rhs);
       const Eigen::VectorXd residual = load - dofs.restrict_to_free(f_int);
       scale = std::max({scale, f_int.norm(), rhs.norm()}); // rhs holds -K_fc du_c so far

@@ -1,75 +1,84 @@
 #include "kerf/fem/sparse_assembler.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace kerf {
 
-SparseAssembler::SparseAssembler(const TetMatrix& tets, const DofMap& dofs) : tets_(tets), dofs_(dofs) {
-  const auto num_nodes = static_cast<Eigen::Index>(dofs.free_index.size() / 3);
-  const int n = static_cast<int>(tets.cols());
+SparseAssembler::SparseAssembler(const TetMatrix& elements, const DofMap& dofs)
+    : elements_(elements), free_index_(dofs.free_index), prescribed_(dofs.prescribed) {
+  const auto num_nodes = static_cast<Eigen::Index>(free_index_.size() / 3);
+  const auto node_is_free = [&](Eigen::Index v) { return free_index_[static_cast<std::size_t>(3 * v)] >= 0; };
+  for (Eigen::Index v = 0; v < num_nodes; ++v)
+    for (int p = 1; p < 3; ++p)
+      if ((free_index_[static_cast<std::size_t>(3 * v + p)] >= 0) != node_is_free(v))
+        throw std::invalid_argument("SparseAssembler: node " + std::to_string(v) + " has some DOFs free and some prescribed");
 
   // 0. The slots each element uses: up to its last non-empty one.
-  slots_used_.assign(static_cast<std::size_t>(tets.rows()), 0);
-  scatter_offset_.assign(static_cast<std::size_t>(tets.rows()) + 1, 0);
-  for (Eigen::Index t = 0; t < tets.rows(); ++t) {
+  const int n = static_cast<int>(elements.cols());
+  slots_used_.assign(static_cast<std::size_t>(elements.rows()), 0);
+  block_offset_.assign(static_cast<std::size_t>(elements.rows()) + 1, 0);
+  for (Eigen::Index t = 0; t < elements.rows(); ++t) {
     int used = 0;
     for (int a = 0; a < n; ++a)
-      if (tets(t, a) >= 0) used = a + 1;
+      if (elements(t, a) >= 0) used = a + 1;
     slots_used_[static_cast<std::size_t>(t)] = used;
-    scatter_offset_[static_cast<std::size_t>(t) + 1] = scatter_offset_[static_cast<std::size_t>(t)] + static_cast<std::size_t>(9 * used * used);
+    block_offset_[static_cast<std::size_t>(t) + 1] = block_offset_[static_cast<std::size_t>(t)] + static_cast<std::size_t>(used * used);
   }
 
-  // 1. Node adjacency: node j's neighbours are the nodes it shares a tet with (itself included).
+  // 1. Node adjacency: node j's neighbours are the free nodes it shares an element with (itself
+  //    included), sorted.
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(num_nodes));
-  for (Eigen::Index t = 0; t < tets.rows(); ++t)
+  for (Eigen::Index t = 0; t < elements.rows(); ++t)
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b)
-        if (tets(t, a) >= 0 && tets(t, b) >= 0) neighbours[static_cast<std::size_t>(tets(t, a))].push_back(tets(t, b));
+        if (elements(t, a) >= 0 && elements(t, b) >= 0 && node_is_free(elements(t, a)))
+          neighbours[static_cast<std::size_t>(elements(t, b))].push_back(elements(t, a));
   for (auto& list : neighbours) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
 
   // 2. The column-major pattern of K_ff. Free indices increase with the global DOF, so walking
-  //    the sorted neighbours and their three components yields each column's rows in order.
+  //    the sorted neighbours and their three components yields each column's rows in order; the
+  //    three columns of a node are alike, 3 #neighbours long.
   const int num_free = dofs.num_free;
   std::vector<int> outer(static_cast<std::size_t>(num_free) + 1, 0);
   std::vector<int> inner;
-  for (Eigen::Index j = 0; j < num_nodes; ++j)
+  column_length_.assign(static_cast<std::size_t>(num_nodes), -1);
+  for (Eigen::Index j = 0; j < num_nodes; ++j) {
+    if (!node_is_free(j)) continue;
+    column_length_[static_cast<std::size_t>(j)] = static_cast<int>(3 * neighbours[static_cast<std::size_t>(j)].size());
     for (int q = 0; q < 3; ++q) {
-      const int col = dofs.free_index[static_cast<std::size_t>(3 * j + q)];
-      if (col < 0) continue;
       for (int i : neighbours[static_cast<std::size_t>(j)])
-        for (int p = 0; p < 3; ++p) {
-          const int row = dofs.free_index[static_cast<std::size_t>(3 * i + p)];
-          if (row >= 0) inner.push_back(row);
-        }
-      outer[static_cast<std::size_t>(col) + 1] = static_cast<int>(inner.size());
+        for (int p = 0; p < 3; ++p) inner.push_back(free_index_[static_cast<std::size_t>(3 * i + p)]);
+      outer[static_cast<std::size_t>(free_index_[static_cast<std::size_t>(3 * j + q)]) + 1] = static_cast<int>(inner.size());
     }
+  }
   K_.resize(num_free, num_free);
   K_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
   std::copy(outer.begin(), outer.end(), K_.outerIndexPtr());
   std::copy(inner.begin(), inner.end(), K_.innerIndexPtr());
   set_zero();
 
-  // 3. The scatter map: for each element entry (r, c), the position of (row, col) in the value
-  //    array, found once by binary search in the column.
-  scatter_.assign(scatter_offset_.back(), -1);
-  for (Eigen::Index t = 0; t < tets.rows(); ++t) {
-    const int m = 3 * slots_used_[static_cast<std::size_t>(t)];
-    int* scatter = scatter_.data() + scatter_offset_[static_cast<std::size_t>(t)];
-    for (int c = 0; c < m; ++c) {
-      if (tets(t, c / 3) < 0) continue;
-      const int col = dofs.free_index[static_cast<std::size_t>(3 * tets(t, c / 3) + c % 3)];
-      if (col < 0) continue;
+  // 3. The scatter map: for each free-free pair of slots (a, b), the position of the block's
+  //    entry (3 node_a, 3 node_b) in the value array, found once by binary search in the column.
+  block_first_.assign(block_offset_.back(), -1);
+  for (Eigen::Index t = 0; t < elements.rows(); ++t) {
+    const int used = slots_used_[static_cast<std::size_t>(t)];
+    int* first = block_first_.data() + block_offset_[static_cast<std::size_t>(t)];
+    for (int b = 0; b < used; ++b) {
+      const int node_b = elements(t, b);
+      if (node_b < 0 || !node_is_free(node_b)) continue;
+      const int col = free_index_[static_cast<std::size_t>(3 * node_b)];
       const int* begin = K_.innerIndexPtr() + K_.outerIndexPtr()[col];
       const int* end = K_.innerIndexPtr() + K_.outerIndexPtr()[col + 1];
-      for (int r = 0; r < m; ++r) {
-        if (tets(t, r / 3) < 0) continue;
-        const int row = dofs.free_index[static_cast<std::size_t>(3 * tets(t, r / 3) + r % 3)];
-        if (row < 0) continue;
-        const int* position = std::lower_bound(begin, end, row);
-        scatter[c * m + r] = static_cast<int>(position - K_.innerIndexPtr());
+      for (int a = 0; a < used; ++a) {
+        const int node_a = elements(t, a);
+        if (node_a < 0 || !node_is_free(node_a)) continue;
+        const int row = free_index_[static_cast<std::size_t>(3 * node_a)];
+        first[b * used + a] = static_cast<int>(std::lower_bound(begin, end, row) - K_.innerIndexPtr());
       }
     }
   }
