@@ -181,6 +181,14 @@ void CutElasticity::assemble_system() {
 // 2's quasi-static Newton iteration on the enriched model, in which each piece of a cut
 // element turns with its own rotation, \f$R_a\f$ and \f$R_b\f$ (eqs. 64-71): the solver is the
 // same function, since it only asks the model for forces and tangents.
+//
+// Reading Paper 000 alongside: eq. 61's second case should read \f$H_i = -1\f$; eq. 71 has its
+// two case labels swapped relative to eqs. 58-59 and ends in \f$x_{a_j}\f$ where the reference
+// position \f$x_{0_j}\f$ is meant; and the remark after eq. 63 that these results "hold for
+// quadratical elements, too" is false for the stiffness of a Tet10, whose strain is not constant
+// (chapter 4). The code never types these equations in: it builds every block from the side
+// operator \f$T\f$ of `xfem_element.hpp`, which lists the three slips where it departs from
+// the printed text.
 void CutElasticity::solve() {
   if (scene_.model == "linear") {
     u_ = kerf::solve_linear_xfem(*model_, dofs_, f_ext_, scene_.solver);

@@ -39,8 +39,20 @@ inline Eigen::Matrix<double, 12, 24> side_operator(const Eigen::Vector4d& psi) {
 ///   K^X = (V_a / V) T_a^T K T_a + (V_b / V) T_b^T K T_b.
 ///
 /// Written out block by block this is eqs. 54-57; with the shifted values of Psi it is eqs.
-/// 60-63 (note the misprint in eq. 61: its second case reads "if H_j = -1"). No new
-/// quadrature point is needed, only the two volumes: Paper 000's "very special feature".
+/// 60-63. No new quadrature point is needed, only the two volumes: Paper 000's "very special
+/// feature".
+///
+/// Where the code departs from Paper 000's printed text (a student reading along should know):
+/// - eq. 61: its second case reads "if H_j = -1" where H_i = -1 is meant;
+/// - eq. 71 (the corotated a-rows): its case labels are swapped relative to eqs. 58-59. It reads
+///   "if H_i = -1, i.e. if Psi_ai = 0 and Psi_bi = -1", but Psi_ai = 0, Psi_bi = -1 belong to
+///   H_i = +1; and its second line ends in x_{a_j} where x_{0_j}, the reference position, is
+///   meant. We never type eq. 71 in: the a-rows are T^T times the side's corotated force,
+///   which is eq. 71 with both corrections (XfemModel::assemble);
+/// - after eq. 63 the paper says these results "hold for quadratical elements, too". They do not
+///   for the stiffness: B is constant on a Tet4, so a piece's integral is a volume ratio, but it
+///   is linear on a Tet10, and the pieces need a real quadrature. Chapter 3 refuses Tet10
+///   meshes for that reason; chapter 4 integrates over the pieces.
 /// The test suite checks this form against eqs. 60-63 typed in entry by entry.
 /// @param K              the uncut 12 x 12 element stiffness
 /// @param fraction_above V_a / V; V_b / V = 1 - V_a / V
