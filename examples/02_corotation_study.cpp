@@ -551,7 +551,7 @@ std::string run_block_study(int cells, const std::vector<double>& depths_in_cell
 
   std::ofstream csv(out / "block.csv");
   csv << "rotation,tangent,depth_in_cells,depth_m,load_steps,converged,newton_iterations,inverted_points,higham_failures,"
-         "min_det_F,seconds,error\n";
+         "warped_fallbacks,dropped_rotation_terms,min_det_F,seconds,error\n";
   std::cout << "\n(c') Block " << a << " m, " << cells << "^3 cells (" << mesh.num_tets() << " Tet4), bottom clamped, top "
             << "centre node pushed down by d cells (cell " << cell << " m), 20 load steps\n";
   std::printf("%5s %-9s %-10s %5s %6s %8s %8s %10s %7s %s\n", "d", "rotation", "tangent", "conv", "iters", "inverted",
@@ -580,10 +580,12 @@ std::string run_block_study(int cells, const std::vector<double>& depths_in_cell
         const double seconds = seconds_since(start);
         const double smallest_det_F = error.empty() ? min_det_F(mesh, result.u) : not_a_number;
         std::replace(error.begin(), error.end(), ',', ';');
+        int warped_fallbacks = 0;
+        for (const kerf::NewtonIteration& iteration : result.history) warped_fallbacks += iteration.warped_fallback;
         csv << rotation_name << ',' << tangent_name << ',' << depth_in_cells << ',' << depth << ',' << settings.load_steps
             << ',' << (result.converged ? 1 : 0) << ',' << result.total_iterations << ','
             << result.last_statistics.inverted_points << ',' << result.last_statistics.higham_failures << ','
-            << smallest_det_F << ',' << seconds << ',' << error << '\n';
+            << warped_fallbacks << ',' << result.last_statistics.dropped_rotation_terms << ',' << smallest_det_F << ',' << seconds << ',' << error << '\n';
         std::printf("%5.1f %-9s %-10s %5s %6d %8d %8d %10.3f %7.3f %s\n", depth_in_cells, rotation_name, tangent_name,
                     result.converged ? "yes" : "no", result.total_iterations, result.last_statistics.inverted_points,
                     result.last_statistics.higham_failures, smallest_det_F, seconds, error.c_str());
