@@ -49,22 +49,9 @@ std::vector<Eigen::Matrix<double, 10, 3>> tet10_gradients_at(const TetQuadrature
   return gradients;
 }
 
-/// The Tet10 checks, on a mesh whose corners are already positively oriented.
-///
-/// Kerf's Tet10 are straight-edged everywhere outside the stiffness: gravity from the corner
-/// volume, face areas from the corners, the affine map of the point locator and of the L2
-/// error, and the 4-point rule is exact only for straight edges. So a curved Tet10 (Gmsh puts
-/// the mid-edge nodes of curved geometry on the surface by default) is straightened, with a
-/// warning; what cannot be a curved edge is refused:
-/// 1. a node that is a corner of one tet and a mid-edge node of another (wrong numbering);
-/// 2. a mid-edge node more than misplaced_node_offset from its edge's midpoint;
-/// 3. an element whose own (curved) map has det J <= 0 at a point of the rules the library
-///    integrates with, degree 2 (stiffness) and degree 4 (mass): it folds over itself, and
-///    straightening it would hide a broken mesh rather than undo a small curvature;
-/// 4. a mid-edge node that is still off after straightening: it was moved onto two different
-///    midpoints, so it is the mid-edge node of different edges in different tets.
-/// Once straight, det J = 6 V > 0 everywhere, the corner volumes having been checked already.
-void check_tet10_mid_edge_nodes(TetMesh& mesh, const std::string& file, std::ostream* warnings) {
+/// Refuses a node that is a corner of one tet and a mid-edge node of another: a Tet10 mesh's
+/// corners and mid-edge nodes are different nodes, so the numbering is wrong.
+void refuse_corners_in_mid_edge_slots(const TetMesh& mesh, const std::string& file) {
   std::vector<Eigen::Index> tet_with_corner(static_cast<std::size_t>(mesh.num_nodes()), -1);
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     for (int a = 0; a < 4; ++a) tet_with_corner[static_cast<std::size_t>(mesh.tets(t, a))] = t;
@@ -74,7 +61,10 @@ void check_tet10_mid_edge_nodes(TetMesh& mesh, const std::string& file, std::ost
         throw InputError(file, "element " + std::to_string(t),
                          describe_mid_edge_node(mesh, t, e) + " is a corner of element " + std::to_string(other) +
                              ": the nodes are numbered wrongly");
+}
 
+/// Refuses a mid-edge node more than misplaced_node_offset from its edge's midpoint.
+void refuse_misplaced_mid_edge_nodes(const TetMesh& mesh, const std::string& file) {
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     for (int e = 0; e < 6; ++e)
       if (const double offset = mid_edge_offset(mesh, t, e); !(offset <= misplaced_node_offset)) {
@@ -84,7 +74,12 @@ void check_tet10_mid_edge_nodes(TetMesh& mesh, const std::string& file, std::ost
                 << " is taken for a curved edge): the mid-edge nodes are in the wrong order, or the edge is bent too far";
         throw InputError(file, "element " + std::to_string(t), problem.str());
       }
+}
 
+/// Refuses a tet whose own (possibly curved) map has det J <= 0 at a point of the rules the
+/// library integrates with: degree 2 (stiffness) and degree 4 (mass). Such a tet folds over
+/// itself; straightening it would hide a broken mesh rather than undo a small curvature.
+void refuse_folded_tets(const TetMesh& mesh, const std::string& file) {
   for (const int degree : {2, 4}) {
     const TetQuadratureRule rule = tet_quadrature_rule(degree);
     const std::vector<Eigen::Matrix<double, 10, 3>> gradients = tet10_gradients_at(rule);
@@ -100,7 +95,12 @@ void check_tet10_mid_edge_nodes(TetMesh& mesh, const std::string& file, std::ost
         }
     }
   }
+}
 
+/// Moves every mid-edge node more than straight_edge_tolerance off its edge's midpoint onto it,
+/// with one warning line. A node still off afterwards was moved onto two different midpoints:
+/// it is the mid-edge node of different edges in different tets, and is refused.
+void straighten_mid_edge_nodes(TetMesh& mesh, const std::string& file, std::ostream* warnings) {
   int straightened = 0;
   Eigen::Index first_straightened = -1;
   double largest_offset = 0.0;
@@ -131,6 +131,21 @@ void check_tet10_mid_edge_nodes(TetMesh& mesh, const std::string& file, std::ost
               << first_straightened << ", mid-edge nodes up to " << largest_offset
               << " of the edge length off the midpoint); their mid-edge nodes were moved onto the midpoints, "
                  "since Kerf's Tet10 are straight-edged\n";
+}
+
+/// The Tet10 checks, on a mesh whose corners are already positively oriented.
+///
+/// Kerf's Tet10 are straight-edged everywhere outside the stiffness: gravity from the corner
+/// volume, face areas from the corners, the affine map of the point locator and of the L2
+/// error, and the 4-point rule is exact only for straight edges. So a curved Tet10 (Gmsh puts
+/// the mid-edge nodes of curved geometry on the surface by default) is straightened, with a
+/// warning, and what cannot be a curved edge is refused first. Once straight, det J = 6 V > 0
+/// everywhere, the corner volumes having been checked already.
+void check_tet10_mid_edge_nodes(TetMesh& mesh, const std::string& file, std::ostream* warnings) {
+  refuse_corners_in_mid_edge_slots(mesh, file);
+  refuse_misplaced_mid_edge_nodes(mesh, file);
+  refuse_folded_tets(mesh, file);
+  straighten_mid_edge_nodes(mesh, file, warnings);
 }
 
 } // namespace
