@@ -3,9 +3,12 @@
 // Every test writes its own small files into a fresh scratch folder: a unit cube split into
 // six tets, two tets sharing a face, and their Tet10 versions. We check what comes back
 // (counts, coordinates, connectivity, the Tet10 node order) and that every malformed variant
-// is refused with a one-line InputError naming the file.
+// is refused with a one-line InputError naming the file. Tet10 files with a curved edge are
+// straightened with a warning; misnumbered or folded Tet10 are refused, naming the element.
 
 #include "kerf/app/input_error.hpp"
+#include "kerf/fem/tet_quadrature.hpp"
+#include "kerf/fem/tet_shape_functions.hpp"
 #include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/mesh/read_gmsh.hpp"
@@ -16,9 +19,13 @@
 
 #include <doctest/doctest.h>
 
+#include <Eigen/Dense>
+
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -547,4 +554,127 @@ TEST_CASE("a missing file and an unknown extension are refused, naming the file"
   const fs::path upper = scratch.path / "CUBE.MSH";
   write_text(upper, gmsh_v2(unit_cube()));
   CHECK(kerf::read_mesh(upper, nullptr).num_tets() == 6);
+}
+
+namespace {
+
+/// The node tags of tet t as the Gmsh writers above list them, " 7 17 ... 97" (one leading
+/// space per tag), optionally with two of the tet's local nodes swapped.
+std::string gmsh_tag_list(const kerf::TetMesh& mesh, Eigen::Index t, int swap_a = 0, int swap_b = 0) {
+  std::vector<int> nodes = gmsh_tet_nodes(mesh, t);
+  std::swap(nodes[static_cast<std::size_t>(swap_a)], nodes[static_cast<std::size_t>(swap_b)]);
+  std::ostringstream tags;
+  for (const int v : nodes) tags << " " << tag_of(v);
+  tags << "\n";
+  return tags.str();
+}
+
+/// One tet with a thin side, corners (0,0,0), (1,0,0), (0,1,0), (0,0,0.1), and its mid-edge nodes.
+kerf::TetMesh thin_tet10() {
+  kerf::TetMesh tet4;
+  tet4.nodes.resize(4, 3);
+  tet4.nodes << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0.1;
+  tet4.tets.resize(1, 4);
+  tet4.tets << 0, 1, 2, 3;
+  return with_midpoints(tet4);
+}
+
+/// The smallest det J of tet t's own (possibly curved) Tet10 map at the points of the degree-2 rule.
+double smallest_det_J(const kerf::TetMesh& mesh, Eigen::Index t) {
+  Eigen::Matrix<double, 10, 3> X;
+  for (int a = 0; a < 10; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& xi : kerf::tet_quadrature_rule(2).points)
+    smallest = std::min(smallest, (X.transpose() * kerf::tet10_shape_gradients(xi)).determinant());
+  return smallest;
+}
+
+} // namespace
+
+TEST_CASE("a Tet10 file with a slightly curved edge is straightened with one warning line") {
+  // In two_tets() the edge between nodes 0 and 1 belongs to tet 0 alone; its mid-edge node
+  // (0.5, 0, 0) is pulled 1e-3 of the edge length off the line, as a mesher curving the edge does.
+  ScratchFolder scratch;
+  const kerf::TetMesh straight = with_midpoints(two_tets());
+  kerf::TetMesh curved = straight;
+  Eigen::Index bent_node = -1;
+  for (Eigen::Index v = 0; v < curved.num_nodes(); ++v)
+    if (curved.nodes.row(v) == Eigen::RowVector3d(0.5, 0, 0)) bent_node = v;
+  REQUIRE(bent_node >= 0);
+  curved.nodes(bent_node, 1) = 1e-3;
+
+  const fs::path vtu = scratch.path / "curved.vtu";
+  kerf::write_vtu(vtu, curved, {}, {});
+  const std::vector<std::pair<fs::path, std::string>> gmsh_files = {
+      {scratch.path / "curved-v2.msh", replaced(gmsh_v2(straight), "0.5 0 0\n", "0.5 0.001 0\n")},
+      {scratch.path / "curved-v4.msh", replaced(gmsh_v4(straight), "0.5 0 0\n", "0.5 0.001 0\n")}};
+  for (const auto& [file, text] : gmsh_files) write_text(file, text);
+
+  for (const fs::path& file : {vtu, gmsh_files[0].first, gmsh_files[1].first}) {
+    CAPTURE(file);
+    std::ostringstream warnings;
+    const kerf::TetMesh read = kerf::read_mesh(file, &warnings);
+    // Node for node the straight mesh, so that everything computed from it is the same.
+    check_same_mesh(read, straight);
+    const std::string warning = warnings.str();
+    CAPTURE(warning);
+    CHECK(warning.find("warning: " + file.string() + ": 1 Tet10 elements had curved edges") == 0);
+    CHECK(warning.find("the first is element 0") != std::string::npos);
+    CHECK(warning.find("up to 0.001 of the edge length") != std::string::npos);
+    CHECK(warning.find('\n') == warning.size() - 1);
+  }
+}
+
+TEST_CASE("a Tet10 file with two mid-edge nodes of one tet swapped is refused, naming the tet") {
+  // Swapping the nodes of edges (0,1) and (1,2) of tet 1 puts each half an edge length off.
+  ScratchFolder scratch;
+  const kerf::TetMesh mesh = with_midpoints(two_tets());
+  kerf::TetMesh swapped = mesh;
+  std::swap(swapped.tets(1, 4), swapped.tets(1, 5));
+  const fs::path vtu = scratch.path / "swapped.vtu";
+  kerf::write_vtu(vtu, swapped, {}, {});
+  check_refused(vtu, "element 1: mid-edge node");
+  check_refused(vtu, "(local node 4, on the edge between corners 0 and 1) is 0.5 of the edge length");
+  check_refused(vtu, "in the wrong order");
+  // In Gmsh's order local nodes 4 and 5 are the same edges (0,1) and (1,2).
+  for (const auto& [name, text] :
+       {std::pair{"swapped-v2.msh", gmsh_v2(mesh)}, std::pair{"swapped-v4.msh", gmsh_v4(mesh)}}) {
+    const fs::path file = scratch.path / name;
+    write_text(file, replaced(text, gmsh_tag_list(mesh, 1), gmsh_tag_list(mesh, 1, 4, 5)));
+    check_refused(file, "element 1: mid-edge node");
+    check_refused(file, "is 0.5 of the edge length");
+  }
+
+  // Corner 0 of tet 1 (node 1, also a corner of tet 0) swapped with its mid-edge node on the
+  // edge (0,3): the tet keeps half its volume, and the corner in a mid-edge slot is refused
+  // before any distance is measured.
+  kerf::TetMesh corner_as_mid_edge = mesh;
+  std::swap(corner_as_mid_edge.tets(1, 0), corner_as_mid_edge.tets(1, 7));
+  const fs::path corner_vtu = scratch.path / "corner.vtu";
+  kerf::write_vtu(corner_vtu, corner_as_mid_edge, {}, {});
+  check_refused(corner_vtu, "element 1: mid-edge node 1 (local node 7, on the edge between corners 0 and 3)");
+  check_refused(corner_vtu, "is a corner of element 0");
+}
+
+TEST_CASE("a Tet10 file whose curved tet has det J < 0 at a quadrature point is refused") {
+  // The node on edge (0,1) of the thin tet moved 0.2 edge lengths across it: within the
+  // quarter-point limit, but the element folds (det J < 0 at a point of the degree-2 rule).
+  ScratchFolder scratch;
+  const kerf::TetMesh straight = thin_tet10();
+  kerf::TetMesh folded = straight;
+  REQUIRE(folded.nodes.row(folded.tets(0, 4)) == Eigen::RowVector3d(0.5, 0, 0));
+  folded.nodes(folded.tets(0, 4), 2) = 0.2;
+  REQUIRE(smallest_det_J(straight, 0) > 0.0);
+  REQUIRE(smallest_det_J(folded, 0) < 0.0);
+
+  const fs::path vtu = scratch.path / "folded.vtu";
+  kerf::write_vtu(vtu, folded, {}, {});
+  const fs::path v2 = scratch.path / "folded-v2.msh";
+  write_text(v2, replaced(gmsh_v2(straight), "0.5 0 0\n", "0.5 0 0.2\n"));
+  const fs::path v4 = scratch.path / "folded-v4.msh";
+  write_text(v4, replaced(gmsh_v4(straight), "0.5 0 0\n", "0.5 0 0.2\n"));
+  for (const fs::path& file : {vtu, v2, v4}) {
+    check_refused(file, "element 0: det J = -");
+    check_refused(file, "of the degree-2 quadrature rule: the curved tetrahedron folds over itself");
+  }
 }

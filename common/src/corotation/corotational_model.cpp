@@ -1,5 +1,6 @@
 #include "kerf/corotation/corotational_model.hpp"
 
+#include "kerf/fem/positive_jacobian.hpp"
 #include "kerf/fem/tet_quadrature.hpp"
 #include "kerf/fem/tet_shape_functions.hpp"
 #include "kerf/fem/tet_stiffness.hpp"
@@ -38,6 +39,7 @@ CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& 
       const Eigen::Matrix<double, 4, 3> X = element_rows<4>(mesh.nodes, mesh.tets, t);
       double det_J = 0.0;
       tet4_gradients_[static_cast<std::size_t>(t)] = physical_shape_gradients<4>(X, tet4_shape_gradients(), det_J);
+      require_positive_jacobian(det_J, "CorotationalModel", t);
       tet4_volumes_[static_cast<std::size_t>(t)] = det_J / 6.0;
       tet4_stiffness_[static_cast<std::size_t>(t)] = tet4_stiffness(X, material);
       const Eigen::Matrix<double, 3, 4> X_columns = X.transpose(); // node-major: x0, y0, z0, x1, ...
@@ -51,6 +53,7 @@ CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& 
       for (std::size_t q = 0; q < rule.points.size(); ++q) {
         double det_J = 0.0;
         tet10_gradients_.push_back(physical_shape_gradients<10>(X, tet10_shape_gradients(rule.points[q]), det_J));
+        require_positive_jacobian(det_J, "CorotationalModel", t);
         tet10_weights_.push_back(rule.weights[q] * det_J);
       }
       const Eigen::Matrix<double, 30, 30> K = tet10_stiffness(X, material);

@@ -1,5 +1,6 @@
 #include "kerf/fem/assemble_loads.hpp"
 
+#include "kerf/fem/positive_jacobian.hpp"
 #include "kerf/fem/tet_loads.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
 
@@ -8,7 +9,9 @@ namespace kerf {
 Eigen::VectorXd assemble_gravity(const TetMesh& mesh, double density, const Eigen::Vector3d& gravity) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    const Eigen::VectorXd s = tet_shape_integrals(mesh.nodes_per_tet(), signed_tet_volume(mesh, t));
+    const double volume = signed_tet_volume(mesh, t);
+    require_positive_jacobian(6.0 * volume, "assemble_gravity", t);
+    const Eigen::VectorXd s = tet_shape_integrals(mesh.nodes_per_tet(), volume);
     for (int a = 0; a < mesh.nodes_per_tet(); ++a) f.segment<3>(3 * mesh.tets(t, a)) += density * s[a] * gravity;
   }
   return f;

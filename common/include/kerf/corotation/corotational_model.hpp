@@ -21,6 +21,9 @@ namespace kerf {
 /// R cannot turn a quadratic tet back, so a separate polar decomposition per cubature point).
 class CorotationalModel : public QuasiStaticModel {
 public:
+  /// The volumes and w_q det J are the integration weights, so every tet must have det J > 0
+  /// (at each quadrature point for a Tet10): std::invalid_argument names the first that has
+  /// not (see positive_jacobian.hpp).
   CorotationalModel(const TetMesh& mesh, const LinearMaterial& material);
 
   /// Internal forces f_int(u) (3#V) and, when `assembler` is given, the tangent added into it

@@ -11,7 +11,9 @@
 namespace kerf {
 
 /// Consistent body-force vector (3#V) of the gravity acceleration g: f_a = rho g int N_a dV
-/// summed over the tets (the volume-force term of eq. 22).
+/// summed over the tets (the volume-force term of eq. 22). Each tet's corner volume is its
+/// weight, so it must be positive: std::invalid_argument names the first tet that is inverted
+/// or flat (see positive_jacobian.hpp).
 Eigen::VectorXd assemble_gravity(const TetMesh& mesh, double density, const Eigen::Vector3d& gravity);
 
 /// The boundary faces all of whose nodes are in a region, and their total area A (m^2): where a

@@ -13,6 +13,8 @@ namespace kerf {
 /// Computes every element stiffness (tet4_stiffness or tet10_stiffness, eq. 30) and adds it
 /// through the assembler: the free-free entries into K_ff, the prescribed columns into rhs_free
 /// (f_f -= K_fc u_c). The assembler's values are not zeroed first: call set_zero() for a fresh K.
+/// Every tet must be positively oriented: std::invalid_argument names the first one whose
+/// corner volume is not positive (see positive_jacobian.hpp).
 void assemble_linear_stiffness(const TetMesh& mesh, const LinearMaterial& material, SparseAssembler& assembler,
                                Eigen::VectorXd& rhs_free);
 

@@ -28,12 +28,14 @@ void add_stiffness_integrand(const Eigen::Matrix<double, n, 3>& g, double weight
 }
 
 /// Tet4 element stiffness (eq. 30 with constant gradients, times the volume), 12x12.
-/// @param X 4x3 corner positions, positively oriented
+/// @param X 4x3 corner positions, positively oriented: det[x1-x0, x2-x0, x3-x0] > 0, or
+///          std::invalid_argument (see positive_jacobian.hpp)
 Eigen::Matrix<double, 12, 12> tet4_stiffness(const Eigen::Matrix<double, 4, 3>& X, const LinearMaterial& material);
 
 /// Tet10 element stiffness, 30x30: eq. (30) integrated with the 4-point degree-2 rule, which
 /// is exact for straight-edged Tet10 (their gradients are linear, the integrand quadratic).
-/// @param X 10x3 node positions (Kerf's Tet10 order)
+/// @param X 10x3 node positions (Kerf's Tet10 order) with det J > 0 at the four points, or
+///          std::invalid_argument (see positive_jacobian.hpp)
 Eigen::Matrix<double, 30, 30> tet10_stiffness(const Eigen::Matrix<double, 10, 3>& X, const LinearMaterial& material);
 
 } // namespace kerf

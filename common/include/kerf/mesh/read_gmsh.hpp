@@ -22,8 +22,9 @@ namespace kerf {
 ///   the order the nodes appear in the file.
 /// - Binary files and format 4.0 are rejected with a message saying how to re-save the file.
 ///
-/// The mesh then goes through check_tet_mesh(), which rejects NaN coordinates and flat tets
-/// and reorients inverted ones.
+/// The mesh then goes through check_tet_mesh(), which rejects NaN coordinates and flat tets,
+/// reorients inverted ones, and for Tet10 straightens curved edges (Gmsh's default for curved
+/// geometry) and rejects misnumbered or folded elements.
 ///
 /// @param file     the .msh file
 /// @param warnings where warnings go (one line each), or nullptr to stay quiet
