@@ -14,6 +14,8 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -178,5 +180,81 @@ inline std::vector<kerf::DirichletNodes> affine_conditions(const kerf::XfemModel
 }
 
 inline bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
+
+// Integrals over the part of a tet on one side of a plane, in closed form, without clipping.
+//
+// Under the uniform distribution on a tet T the barycentric coordinates phi are Dirichlet(1,1,1,1),
+// and weighting by phi^alpha = prod phi_k^alpha_k turns it into Dirichlet(1 + alpha). That is
+// the law of a uniform point of an n-simplex, n = 3 + |alpha|, whose vertices are those of T,
+// vertex k repeated 1 + alpha_k times, with the barycentric coordinates of the copies added up.
+// The plane's level set f = sum lambda_k phi_k is linear, so
+//   int_{T, side f > 0} phi^alpha dV = V 6 alpha! / (|alpha| + 3)!  P_n(f > 0),
+// and the fraction of an n-simplex where a linear function with vertex values mu_0..mu_n is
+// positive is the divided difference [mu_0, ..., mu_n] of t -> (t)_+^n (its density is the
+// B-spline with those knots). Repeated knots make it a confluent divided difference, computed
+// with derivatives. For alpha = 0 and distinct values this is sum_{lambda_k > 0} lambda_k^3 /
+// prod_{j != k} (lambda_k - lambda_j), e.g. lambda_0^3 / prod (lambda_0 - lambda_j) for the small
+// tet at a lone corner: the product of the three edge fractions.
+inline double positive_part_divided_difference(std::vector<double> mu) {
+  std::sort(mu.begin(), mu.end());
+  const int n = static_cast<int>(mu.size()) - 1;
+  // d^j/dt^j (t)_+^n / j! = C(n, j) t^(n - j) for t > 0, 0 otherwise.
+  const auto derivative_over_factorial = [n](double t, int j) {
+    if (t <= 0.0) return 0.0;
+    double binomial = 1.0;
+    for (int m = 0; m < j; ++m) binomial = binomial * (n - m) / (m + 1);
+    return binomial * std::pow(t, n - j);
+  };
+  std::vector<double> column(mu.size());
+  for (std::size_t i = 0; i < mu.size(); ++i) column[i] = derivative_over_factorial(mu[i], 0);
+  for (int j = 1; j <= n; ++j)
+    for (int i = n; i >= j; --i) {
+      const auto ui = static_cast<std::size_t>(i), lo = static_cast<std::size_t>(i - j);
+      column[ui] = mu[ui] == mu[lo] ? derivative_over_factorial(mu[ui], j) : (column[ui] - column[ui - 1]) / (mu[ui] - mu[lo]);
+    }
+  return column.back();
+}
+
+// int over the part of the tet (volume V, corner level-set values lambda, none zero) on side
+// `side` (+1: lambda > 0) of prod_k phi_k^alpha_k dV, in closed form (see above). A tet wholly
+// on one side is answered directly, V 6 alpha! / (|alpha| + 3)! or 0, without divided
+// differences, which would only add round-off there.
+inline double side_moment(const Eigen::Vector4d& lambda, double volume, const std::array<int, 4>& alpha, int side) {
+  int total = 0;
+  double moment = 6.0 * volume;
+  for (int k = 0; k < 4; ++k) {
+    total += alpha[static_cast<std::size_t>(k)];
+    moment *= std::tgamma(alpha[static_cast<std::size_t>(k)] + 1.0);
+  }
+  moment /= std::tgamma(total + 4.0);
+  const Eigen::Vector4d f = side * lambda;
+  if (f.minCoeff() > 0.0) return moment;
+  if (f.maxCoeff() < 0.0) return 0.0;
+  std::vector<double> mu;
+  for (int k = 0; k < 4; ++k)
+    for (int r = 0; r <= alpha[static_cast<std::size_t>(k)]; ++r) mu.push_back(f[k]);
+  return moment * positive_part_divided_difference(mu);
+}
+
+// int over the side `side` part of the tet of phi_i phi_j dV (i, j corners), and of phi_i dV.
+inline double side_product_integral(const Eigen::Vector4d& lambda, double volume, int i, int j, int side) {
+  std::array<int, 4> alpha{};
+  ++alpha[static_cast<std::size_t>(i)];
+  ++alpha[static_cast<std::size_t>(j)];
+  return side_moment(lambda, volume, alpha, side);
+}
+inline double side_shape_integral(const Eigen::Vector4d& lambda, double volume, int i, int side) {
+  std::array<int, 4> alpha{};
+  ++alpha[static_cast<std::size_t>(i)];
+  return side_moment(lambda, volume, alpha, side);
+}
+
+// The signed distance of x to the plane through `point` with normal `normal` (any length).
+inline double plane_value(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, const Eigen::Vector3d& x) {
+  return normal.normalized().dot(x - point);
+}
+
+// Psi_side,i = (H_side - H_i) / 2 (eq. 44) for a node of sign H_i.
+inline double psi_of(int side, int node_sign) { return 0.5 * (side - node_sign); }
 
 } // namespace xfem_test
