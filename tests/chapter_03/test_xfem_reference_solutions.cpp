@@ -425,3 +425,17 @@ TEST_CASE("xfem reference: a tet beyond the front has no sides, and no enriched 
   }
   CHECK(beyond > 0);
 }
+
+TEST_CASE("xfem reference: an inverted tet built in code is refused by the XFEM model, naming it") {
+  kerf::TetMesh mesh = beam({1, 1, 2});
+  std::swap(mesh.tets(1, 0), mesh.tets(1, 1)); // tet 1 now has det J < 0
+  const kerf::Enrichment e = kerf::make_enrichment(mesh, plane_cut({0.015, 0.03, 0.1003}, {0.2, 0.1, 1.0}));
+  std::string message;
+  try {
+    const kerf::XfemModel model(mesh, material, e);
+  } catch (const std::invalid_argument& error) {
+    message = error.what();
+  }
+  CHECK(message.find("XfemModel") != std::string::npos);
+  CHECK(message.find("1") != std::string::npos);
+}

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include "kerf/fem/positive_jacobian.hpp"
 #include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/fem/tet_shape_functions.hpp"
 #include "kerf/fem/tet_stiffness.hpp"
@@ -58,6 +59,7 @@ XfemModel::XfemModel(const TetMesh& mesh, const LinearMaterial& material, const 
     const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
     double det_J = 0.0;
     gradients_[k] = physical_shape_gradients<4>(X, tet4_shape_gradients(), det_J);
+    require_positive_jacobian(det_J, "XfemModel", t); // V = det J / 6 is an integration weight below
     volumes_[k] = det_J / 6.0;
     stiffness_[k] = tet4_stiffness(X, material);
     const Eigen::Matrix<double, 3, 4> X_columns = X.transpose();
