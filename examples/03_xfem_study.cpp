@@ -6,28 +6,37 @@
    Sample runs:
      03_xfem_study --quick --out output/xfem_study_quick
      03_xfem_study --out figures/03_xfem_heaviside
+     03_xfem_study --only sweep --out figures/03_xfem_heaviside     (one part: ladders, offsets, sweep, fraction)
 
    Description: the beam of chapters 1 and 2 (0.03 x 0.06 x 0.2 m, E = 300 kPa, nu = 0.35,
-   rho = 1070 kg/m^3), clamped at z = 0, cut half-way through its depth by Paper 000's rectangle
-   [0, 0.015] x [0, 0.06] x {0.1}, under the paper's three loads (section 6):
+   rho = 1070 kg/m^3), clamped at z = 0, cut half-way through its depth by a rectangle
+   [0, x1] x [0, 0.06] x {z}, under Paper 000's three loads (section 6):
      gravity  9.81 m/s^2 along +x;
      pull     the top edge x = 0 (z = 0.2, all y) moved up by 0.02 m;
      move     the top edge x = 0.03 moved by (+0.03, 0, -0.015) m.
    Each is solved with linear and with corotated FEM. The program writes, into the --out folder:
-     ladder.csv     one row per (case, model, method, mesh): DOFs, wall time, relative L2 error
-                    against the reference. Methods: "xfem" (Tet4 meshes whose cells the plane
-                    z = 0.1 and the front x = 0.015 cross in the middle), "conforming" (Tet4
-                    meshes with node layers on both, the cut opened by duplicating nodes) and
-                    "conforming10" (the same with Tet10: the reference's own ladder);
+     ladder.csv     one row per (case, model, method, mesh), the cut at x1 = 0.0153, z = 0.1003
+                    (Paper 000's moved by 0.3 mm, off every node layer and cell middle): DOFs,
+                    wall time, relative L2 error against the reference, and the enrichment's
+                    counts (partially cut tets among them). Methods: "xfem" (uniform Tet4 box
+                    meshes that ignore the cut), "conforming" (Tet4 box meshes whose node layers
+                    nearest to x1 and z are moved onto them, the cut opened by duplicating nodes)
+                    and "conforming10" (the same with Tet10: the reference's own ladder);
+     ladder_offsets.csv  the linear ladders again for three more places of the cut, for the
+                    spread of the comparison;
      reference.csv  the reference (a fine conforming Tet10 mesh opened along the cut) and its
                     cross-check by CalculiX on the same mesh, for the linear cases;
+     front_sweep.csv  gravity, linear: the tip u_x at (0.03, 0.03, 0.2) against the front x1 from
+                    0.001 to 0.029 m, XFEM on 3x6x19 (plane z = 0.1 and 0.1003) and 5x10x31
+                    (0.1003), with the enrichment's counts, "separated" where the simulated cut
+                    frees the top, and conforming Tet4 and Tet10 meshes fitted to every x1;
      fraction.csv   the cut plane moved a distance d above a node layer of a small mesh, d / h
                     from 1e-1 to 1e-12: smallest piece volume fractions, condition number of
                     K_ff (plain and Jacobi-scaled) and the difference from the solution with the
                     cut exactly on the layer, with the default minimum-fraction rule and without;
      section.csv    the deformed cross-section y = 0.03 of the XFEM solution of "pull" (corotated),
                     piece by piece, for a picture of the opened cut.
-   --quick runs every code path on tiny meshes in a few seconds; it is a test.
+   --quick runs every code path on tiny meshes (and the sweep at three x1) in a few seconds; it is a test.
 
    Read chapter 3 first. */
 
@@ -63,10 +72,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace xfem_study {
@@ -79,10 +90,24 @@ const Eigen::Vector3d beam_min(0.0, 0.0, 0.0);
 const Eigen::Vector3d beam_max(0.03, 0.06, 0.2);
 const double cut_height = 0.1, front_x = 0.015;
 
-/// Paper 000's half-depth cut at height z: [0, 0.015] x [0, 0.06] x {z}, normal +z.
-kerf::RectangleCut make_cut(double z) {
-  return kerf::RectangleCut(Eigen::Vector3d(0.0, 0.0, z), Eigen::Vector3d(front_x, 0.0, 0.0), Eigen::Vector3d(0.0, 0.06, 0.0));
+/// Where a half-depth cut stands: its front x = x1 and its plane z.
+struct CutPlace {
+  double x1 = front_x;
+  double z = cut_height;
+};
+
+/// The ladders' cut: Paper 000's, moved by 0.3 mm in x and z so that neither the front nor the
+/// plane lies on a node layer or a cell middle of any ladder mesh, and the tets at the front are
+/// partially cut (ladder.csv counts them). On Paper 000's own place, x = 0.015 and z = 0.1, the
+/// odd cell counts of the XFEM ladder put both through cell middles, where every section at the
+/// front ends exactly on it: a coincidence, not the method (results.md, "Where the cut ends").
+const CutPlace ladder_place{0.0153, 0.1003};
+
+/// The half-depth cut [0, x1] x [0, 0.06] x {z}, normal +z (Paper 000's with x1 = 0.015, z = 0.1).
+kerf::RectangleCut make_cut(double z, double x1 = front_x) {
+  return kerf::RectangleCut(Eigen::Vector3d(0.0, 0.0, z), Eigen::Vector3d(x1, 0.0, 0.0), Eigen::Vector3d(0.0, 0.06, 0.0));
 }
+kerf::RectangleCut make_cut(const CutPlace& place) { return make_cut(place.z, place.x1); }
 
 std::string cells_text(const Eigen::Vector3i& c) { return std::to_string(c[0]) + "x" + std::to_string(c[1]) + "x" + std::to_string(c[2]); }
 
@@ -141,12 +166,37 @@ struct Solution {
 
 // @sect3{Conforming FEM: the cut opened by duplicated nodes}
 
-/// The box mesh with cells (x, z even, so that 0.015 and 0.1 are node layers), promoted to
-/// Tet10 for order 2, then opened along the cut.
-kerf::SplitMesh conforming_mesh(const Eigen::Vector3i& cells, int order) {
+/// The box mesh with `cells`, its node layers moved along x and z so that one lies on the front
+/// x1 and one on the plane z: the layer nearest to each (never a face of the beam) goes there
+/// exactly, and the layers between it and the faces are spaced evenly again (a piecewise linear
+/// map of each coordinate, which keeps every tet's orientation). For even cell counts and
+/// Paper 000's place (0.015, 0.1) nothing moves.
+kerf::TetMesh fitted_box_mesh(const Eigen::Vector3i& cells, const CutPlace& place) {
   kerf::TetMesh mesh = kerf::make_box_mesh(beam_min, beam_max, cells);
+  const auto fit = [&](int axis, double target) {
+    const int n = cells[axis];
+    const double length = beam_max[axis], h = length / n;
+    const int layer = std::clamp(static_cast<int>(std::lround(target / h)), 1, n - 1);
+    for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v) {
+      double& c = mesh.nodes(v, axis);
+      const long k = std::lround(c / h);
+      if (k == 0) c = 0.0;
+      else if (k == n) c = length;
+      else if (k == layer) c = target;
+      else if (k < layer) c = target * k / layer;
+      else c = target + (length - target) * static_cast<double>(k - layer) / (n - layer);
+    }
+  };
+  fit(0, place.x1);
+  fit(2, place.z);
+  return mesh;
+}
+
+/// The fitted box mesh, promoted to Tet10 for order 2, then opened along the cut.
+kerf::SplitMesh conforming_mesh(const Eigen::Vector3i& cells, int order, const CutPlace& place) {
+  kerf::TetMesh mesh = fitted_box_mesh(cells, place);
   if (order == 2) mesh = kerf::tet10_from_tet4(mesh);
-  return kerf::split_mesh_along_cut(mesh, make_cut(cut_height), 1e-9);
+  return kerf::split_mesh_along_cut(mesh, make_cut(place), 1e-9);
 }
 
 Solution solve_conforming(const kerf::TetMesh& mesh, const LoadCase& c, bool corotated) {
@@ -262,20 +312,20 @@ double xfem_error(const ReferenceField& ref, const XfemRun& run) {
 
 /// The XFEM field on a grid of points in the mid-plane y = 0.03, each point moved by the field
 /// of its own side: plotted as dots, the two faces of the cut separate where it opens.
-void write_section(const XfemRun& run, const std::filesystem::path& file) {
+void write_section(const XfemRun& run, const std::filesystem::path& file, double plane_z) {
   const int nx = 31, nz = 201;
   Eigen::MatrixXd points(nx * nz, 3);
   for (int i = 0; i < nx; ++i)
     for (int k = 0; k < nz; ++k) points.row(i * nz + k) << beam_max[0] * i / (nx - 1), 0.03, beam_max[2] * k / (nz - 1);
   // No point on the plane z = 0.1 itself, where the side would be a convention: nudge them.
   for (Eigen::Index p = 0; p < points.rows(); ++p)
-    if (std::abs(points(p, 2) - cut_height) < 1e-12) points(p, 2) += 1e-6;
+    if (std::abs(points(p, 2) - plane_z) < 1e-12) points(p, 2) += 1e-6;
   Eigen::Index outside = 0;
   const Eigen::MatrixXd u = kerf::xfem_displacement_at(*run.model, run.solution.u, points, outside);
   std::ofstream csv(file);
   csv << "x,z,above,deformed_x,deformed_z\n";
   for (Eigen::Index p = 0; p < points.rows(); ++p)
-    csv << points(p, 0) << ',' << points(p, 2) << ',' << (points(p, 2) > cut_height ? 1 : 0) << ',' << points(p, 0) + u(p, 0) << ','
+    csv << points(p, 0) << ',' << points(p, 2) << ',' << (points(p, 2) > plane_z ? 1 : 0) << ',' << points(p, 0) + u(p, 0) << ','
         << points(p, 2) + u(p, 2) << '\n';
 }
 
@@ -291,6 +341,11 @@ struct Sizes {
   int max_corotated_cells = 0;
   std::vector<Eigen::Vector3i> fraction_meshes; ///< front x = 0.015 on a node layer, and mid-cell
   std::vector<double> fraction_offsets;         ///< d / h
+  std::vector<CutPlace> spread_places;          ///< more generic places for the linear ladders, for their spread
+  std::vector<double> sweep_x1;                 ///< the front positions of the front sweep
+  std::vector<std::pair<Eigen::Vector3i, double>> sweep_meshes; ///< XFEM meshes of the sweep and their plane z
+  Eigen::Vector3i sweep_conforming;             ///< conforming Tet4 mesh of the sweep (fitted to every x1)
+  Eigen::Vector3i sweep_reference;              ///< conforming Tet10 mesh of the sweep (fitted to every x1)
 };
 
 Sizes study_sizes(bool quick) {
@@ -304,6 +359,11 @@ Sizes study_sizes(bool quick) {
     s.max_corotated_cells = 1000;
     s.fraction_meshes = {{2, 2, 10}, {3, 2, 10}};
     s.fraction_offsets = {1e-1, 1e-4, 1e-7};
+    s.spread_places = {{0.0147, 0.0997}};
+    s.sweep_x1 = {0.005, 0.0153, 0.0251};
+    s.sweep_meshes = {{{3, 6, 19}, 0.1003}};
+    s.sweep_conforming = {3, 6, 20};
+    s.sweep_reference = {2, 4, 10};
   } else {
     s.reference[0] = {6, 12, 40};
     s.reference_check[0] = {4, 8, 26};
@@ -315,25 +375,36 @@ Sizes study_sizes(bool quick) {
     s.max_corotated_cells = 4100;
     s.fraction_meshes = {{4, 4, 10}, {3, 4, 10}};
     for (int k = 1; k <= 15; ++k) s.fraction_offsets.push_back(std::pow(10.0, -0.5 * k));
+    // 0.3 mm and 0.9 mm either side of Paper 000's place in x, mixed in z: on the three-cell
+    // meshes 0.0147 and 0.0141 fall in the other half of the cell than 0.0153 and 0.0159.
+    s.spread_places = {{0.0147, 0.0997}, {0.0159, 0.1011}, {0.0141, 0.1006}};
+    for (int k = 0; k <= 56; ++k) s.sweep_x1.push_back(0.001 + 0.0005 * k);
+    s.sweep_meshes = {{{3, 6, 19}, 0.1}, {{3, 6, 19}, 0.1003}, {{5, 10, 31}, 0.1003}};
+    s.sweep_conforming = {3, 6, 20};
+    s.sweep_reference = {4, 8, 20};
   }
   s.calculix = s.reference_check[0];
   return s;
 }
 
-/// Runs every ladder for every case and model; writes ladder.csv and reference.csv.
-void run_ladders(const Sizes& sizes, const std::string& ccx, const std::filesystem::path& out) {
-  std::ofstream csv(out / "ladder.csv");
-  csv << "case,model,method,cells,dofs,seconds,iterations,converged,rel_l2_error,enriched_nodes,front_nodes,cut_tets\n";
-  std::ofstream rcsv(out / "reference.csv");
-  rcsv << "case,model,cells,dofs,seconds,iterations,converged,max_u_m,check_cells,check_rel_l2,ccx_matrix_max_rel,ccx_static_max_rel,"
-          "ccx_static_s,ccx_matrix_s\n";
-  std::printf("%-8s %-6s %-13s %-9s %7s %8s %10s %5s\n", "case", "model", "method", "cells", "dofs", "time_s", "rel_L2", "iter");
+const char* const ladder_header = "case,model,method,cells,dofs,seconds,iterations,converged,rel_l2_error,enriched_nodes,front_nodes,"
+                                  "cut_tets,partially_cut,completely_cut,x1,z\n";
+
+/// Runs every ladder for every case and model (only the linear ones if linear_only) with the cut
+/// at `place`, appending to `csv` (ladder_header) and, when given, to `rcsv` (reference.csv).
+void run_ladders(const Sizes& sizes, const std::string& ccx, const std::filesystem::path& out, const CutPlace& place, std::ofstream& csv,
+                 std::ofstream* rcsv, bool linear_only) {
+  std::printf("\nLadders with the cut's front at x1 = %g m and its plane at z = %g m%s\n", place.x1, place.z,
+              linear_only ? " (linear only)" : "");
+  std::printf("%-8s %-6s %-13s %-9s %7s %8s %10s %5s %5s\n", "case", "model", "method", "cells", "dofs", "time_s", "rel_L2", "iter",
+              "part.");
   for (const LoadCase& c : load_cases())
     for (bool corotated : {false, true}) {
+      if (corotated && linear_only) continue;
       const char* model = corotated ? "corot" : "linear";
       const Eigen::Vector3i reference_cells = sizes.reference[corotated], check_cells = sizes.reference_check[corotated];
-      const kerf::SplitMesh reference_mesh = conforming_mesh(reference_cells, 2);
-      const kerf::SplitMesh check_mesh = conforming_mesh(check_cells, 2);
+      const kerf::SplitMesh reference_mesh = conforming_mesh(reference_cells, 2, place);
+      const kerf::SplitMesh check_mesh = conforming_mesh(check_cells, 2, place);
       const Solution ref = solve_conforming(reference_mesh.mesh, c, corotated);
       const ReferenceField field = sample_reference(reference_mesh.mesh, ref.u);
       const double max_u = ref.u.reshaped(3, ref.u.size() / 3).colwise().norm().maxCoeff();
@@ -342,7 +413,7 @@ void run_ladders(const Sizes& sizes, const std::string& ccx, const std::filesyst
       // CalculiX on a conforming split Tet10 mesh (the linear check mesh: ccx on the reference
       // itself takes minutes), both routes, against Kerf's solution on the same mesh.
       double ccx_matrix = not_a_number, ccx_static = not_a_number, ccx_static_s = not_a_number, ccx_matrix_s = not_a_number;
-      if (!corotated && !ccx.empty()) {
+      if (!corotated && !ccx.empty() && rcsv != nullptr) {
         const kerf::SplitMesh& ccx_mesh = check_mesh;
         const Eigen::VectorXd& u_kerf_flat = check.u;
         const double ccx_max_u = u_kerf_flat.reshaped(3, u_kerf_flat.size() / 3).colwise().norm().maxCoeff();
@@ -361,49 +432,55 @@ void run_ladders(const Sizes& sizes, const std::string& ccx, const std::filesyst
           std::cerr << "CalculiX cross-check of " << c.name << " failed: " << error.what() << '\n';
         }
       }
-      rcsv << c.name << ',' << model << ',' << cells_text(reference_cells) << ',' << ref.dofs << ',' << ref.seconds << ','
+      if (rcsv != nullptr)
+        *rcsv << c.name << ',' << model << ',' << cells_text(reference_cells) << ',' << ref.dofs << ',' << ref.seconds << ','
            << ref.iterations << ',' << ref.converged << ',' << max_u << ',' << cells_text(check_cells) << ',' << check_error << ','
-           << ccx_matrix << ',' << ccx_static << ',' << ccx_static_s << ',' << ccx_matrix_s << '\n';
+           << ccx_matrix << ',' << ccx_static << ',' << ccx_static_s << ',' << ccx_matrix_s << ',' << place.x1 << ',' << place.z << '\n';
       std::printf("%-8s %-6s %-13s %-9s %7d %8.3f %10s %5d  max|u| = %.4g m, next coarser Tet10 %s: %.3e, CalculiX on %s: %.2e (matrix), "
                   "%.2e (static)\n",
                   c.name.c_str(), model, "reference", cells_text(reference_cells).c_str(), ref.dofs, ref.seconds, "-", ref.iterations,
                   max_u, cells_text(check_cells).c_str(), check_error, cells_text(check_cells).c_str(), ccx_matrix, ccx_static);
 
       const auto row = [&](const char* method, const Eigen::Vector3i& cells, const Solution& s, double error, int enriched, int front,
-                           int cut_tets) {
+                           int cut_tets, int partially, int completely) {
         csv << c.name << ',' << model << ',' << method << ',' << cells_text(cells) << ',' << s.dofs << ',' << s.seconds << ','
-            << s.iterations << ',' << s.converged << ',' << error << ',' << enriched << ',' << front << ',' << cut_tets << '\n';
-        std::printf("%-8s %-6s %-13s %-9s %7d %8.3f %10.3e %5d%s\n", c.name.c_str(), model, method, cells_text(cells).c_str(), s.dofs,
-                    s.seconds, error, s.iterations, s.converged ? "" : " NOT CONVERGED");
+            << s.iterations << ',' << s.converged << ',' << error << ',' << enriched << ',' << front << ',' << cut_tets << ',' << partially
+            << ',' << completely << ',' << place.x1 << ',' << place.z << '\n';
+        std::printf("%-8s %-6s %-13s %-9s %7d %8.3f %10.3e %5d %5d%s\n", c.name.c_str(), model, method, cells_text(cells).c_str(), s.dofs,
+                    s.seconds, error, s.iterations, partially, s.converged ? "" : " NOT CONVERGED");
       };
       const auto too_big = [&](const Eigen::Vector3i& cells) { return corotated && cells.prod() > sizes.max_corotated_cells; };
       for (const Eigen::Vector3i& cells : sizes.xfem) {
         if (too_big(cells)) continue;
         XfemRun run;
         run.mesh = kerf::make_box_mesh(beam_min, beam_max, cells);
+        const auto partially = [&] { return run.enrichment.classification.count(kerf::ElementCutState::partially_cut); };
+        const auto completely = [&] { return run.enrichment.classification.count(kerf::ElementCutState::completely_cut); };
         try {
-          solve_xfem(run, make_cut(cut_height), c, corotated);
+          solve_xfem(run, make_cut(place), c, corotated);
         } catch (const std::runtime_error& error) {
-          // One cell across x: every tet the plane crosses is cut (extended through), so the cut
-          // runs through the whole depth and the top half is loose under gravity.
-          std::printf("%-8s %-6s %-13s %-9s singular: %s\n", c.name.c_str(), model, "xfem", cells_text(cells).c_str(), error.what());
+          // A cut the enrichment extends through the whole depth (one cell across x) leaves a
+          // piece no condition holds, and the library refuses it by name.
+          std::printf("%-8s %-6s %-13s %-9s separated: %s\n", c.name.c_str(), model, "xfem", cells_text(cells).c_str(), error.what());
           csv << c.name << ',' << model << ",xfem," << cells_text(cells) << ",nan,nan,0,0,nan," << run.enrichment.num_enriched() << ','
-              << run.enrichment.front_nodes << ',' << run.enrichment.cut_tets << '\n';
+              << run.enrichment.front_nodes << ',' << run.enrichment.cut_tets << ',' << partially() << ',' << completely() << ','
+              << place.x1 << ',' << place.z << '\n';
           continue;
         }
         row("xfem", cells, run.solution, xfem_error(field, run), static_cast<int>(run.enrichment.num_enriched()),
-            run.enrichment.front_nodes, run.enrichment.cut_tets);
-        if (c.name == "pull" && corotated && cells == sizes.xfem[std::min<std::size_t>(3, sizes.xfem.size() - 1)]) {
+            run.enrichment.front_nodes, run.enrichment.cut_tets, partially(), completely());
+        if (!linear_only && c.name == "pull" && corotated && cells == sizes.xfem[std::min<std::size_t>(3, sizes.xfem.size() - 1)]) {
           kerf::write_xfem_vtu(out / "pull_corot_xfem_pieces.vtu", *run.model, run.solution.u);
-          write_section(run, out / "section.csv");
+          write_section(run, out / "section.csv", place.z);
         }
       }
       for (int order : {1, 2})
         for (const Eigen::Vector3i& cells : order == 1 ? sizes.conforming : sizes.conforming10) {
           if (too_big(cells)) continue;
-          const kerf::SplitMesh mesh = conforming_mesh(cells, order);
+          const kerf::SplitMesh mesh = conforming_mesh(cells, order, place);
           const Solution s = solve_conforming(mesh.mesh, c, corotated);
-          row(order == 1 ? "conforming" : "conforming10", cells, s, conforming_error(field, mesh.mesh, s.u), mesh.duplicated_nodes, 0, 0);
+          row(order == 1 ? "conforming" : "conforming10", cells, s, conforming_error(field, mesh.mesh, s.u), mesh.duplicated_nodes, 0, 0, 0,
+              0);
         }
     }
 }
@@ -500,22 +577,119 @@ void run_fraction_study(const Eigen::Vector3i& cells, const std::vector<double>&
   uncut << front << ',' << cells_text(cells) << ',' << dofs.num_free << ',' << eig.maxCoeff() / eig.minCoeff() << '\n';
 }
 
+// @sect3{Where the simulated cut ends: the front swept through an element}
+
+/// The tip deflection u_x at (0.03, 0.03, 0.2) under gravity (linear) as the front x1 moves
+/// through the elements, on each sweep mesh, with the counts of what the enrichment made of the
+/// cut, and the same on conforming meshes fitted to every x1 (Tet4 and Tet10). An x1 whose
+/// simulated cut separates the body is recorded as "separated". Writes front_sweep.csv.
+void run_front_sweep(const Sizes& sizes, const std::filesystem::path& out) {
+  const LoadCase gravity = load_cases()[0];
+  Eigen::MatrixXd tip(1, 3);
+  tip << 0.03, 0.03, 0.2;
+  const auto tip_ux = [&](auto&& evaluate) {
+    Eigen::Index outside = 0;
+    const Eigen::MatrixXd u = evaluate(tip, outside);
+    return outside > 0 ? not_a_number : u(0, 0);
+  };
+  const auto conforming_tip = [&](const Eigen::Vector3i& cells, int order, const CutPlace& place) {
+    const kerf::SplitMesh mesh = conforming_mesh(cells, order, place);
+    const Solution s = solve_conforming(mesh.mesh, gravity, false);
+    return tip_ux([&](const Eigen::MatrixXd& p, Eigen::Index& outside) { return kerf::evaluate_displacement_at(mesh.mesh, s.u, p, outside); });
+  };
+  std::ofstream csv(out / "front_sweep.csv");
+  csv << "cells,z,x1,status,enriched_nodes,front_nodes,cut_tets,partially_cut,completely_cut,tip_ux_xfem,tip_ux_conforming,"
+         "tip_ux_conforming10\n";
+  std::cout << "\nFront sweep: gravity, linear, tip u_x at (0.03, 0.03, 0.2); conforming Tet4 " << cells_text(sizes.sweep_conforming)
+            << " and Tet10 " << cells_text(sizes.sweep_reference) << " fitted to every x1\n";
+  std::printf("%-8s %7s %7s %9s %5s %5s %5s %12s %12s %12s\n", "cells", "z", "x1", "status", "enr", "part", "compl", "xfem", "conf_tet4",
+              "conf_tet10");
+  // The conforming answers depend on x1 and z only: once per plane and x1, then the XFEM meshes
+  // of that plane one after the other (one block of rows each, for the chart's lines).
+  std::vector<double> planes;
+  for (const auto& [cells, z] : sizes.sweep_meshes)
+    if (std::find(planes.begin(), planes.end(), z) == planes.end()) planes.push_back(z);
+  for (double z : planes) {
+    std::vector<double> conforming, conforming10;
+    for (double x1 : sizes.sweep_x1) {
+      conforming.push_back(conforming_tip(sizes.sweep_conforming, 1, CutPlace{x1, z}));
+      conforming10.push_back(conforming_tip(sizes.sweep_reference, 2, CutPlace{x1, z}));
+    }
+    for (const auto& [cells, mesh_z] : sizes.sweep_meshes) {
+      if (mesh_z != z) continue;
+      for (std::size_t i = 0; i < sizes.sweep_x1.size(); ++i) {
+        const double x1 = sizes.sweep_x1[i];
+        XfemRun run;
+        run.mesh = kerf::make_box_mesh(beam_min, beam_max, cells);
+        std::string status = "solved";
+        double xfem = not_a_number;
+        try {
+          solve_xfem(run, make_cut(CutPlace{x1, z}), gravity, false);
+          xfem = tip_ux([&](const Eigen::MatrixXd& p, Eigen::Index& outside) {
+            return kerf::xfem_displacement_at(*run.model, run.solution.u, p, outside);
+          });
+        } catch (const std::runtime_error& error) {
+          // The library refuses a piece no Dirichlet condition holds, naming it.
+          status = "separated";
+          std::printf("  %s, x1 = %g: %s\n", cells_text(cells).c_str(), x1, error.what());
+        }
+        const int partially = run.enrichment.classification.count(kerf::ElementCutState::partially_cut);
+        const int completely = run.enrichment.classification.count(kerf::ElementCutState::completely_cut);
+        csv << cells_text(cells) << ',' << z << ',' << x1 << ',' << status << ',' << run.enrichment.num_enriched() << ','
+            << run.enrichment.front_nodes << ',' << run.enrichment.cut_tets << ',' << partially << ',' << completely << ','
+            << std::setprecision(17) << xfem << ',' << conforming[i] << ',' << conforming10[i] << std::setprecision(6) << '\n';
+        std::printf("%-8s %7.4f %7.4f %9s %5d %5d %5d %12.6g %12.6g %12.6g\n", cells_text(cells).c_str(), z, x1, status.c_str(),
+                    static_cast<int>(run.enrichment.num_enriched()), partially, completely, xfem, conforming[i], conforming10[i]);
+      }
+    }
+  }
+}
+
 } // namespace xfem_study
 
 int main(int argc, char** argv) {
-  const auto options = kerf_measure::parse_run_options(argc, argv, "03_xfem_study [--quick] [--out DIR]", "output/xfem_study");
+  // --only PARTS (comma-separated: ladders, offsets, sweep, fraction) runs only those parts, so
+  // that one part can be regenerated without the others; the default runs all four.
+  std::string only = "ladders,offsets,sweep,fraction";
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::string(argv[i]) == "--only" && i + 1 < argc) {
+      only = argv[++i];
+      continue;
+    }
+    args.push_back(argv[i]);
+  }
+  const auto part = [&](const std::string& name) { return ("," + only + ",").find("," + name + ",") != std::string::npos; };
+  const auto options = kerf_measure::parse_run_options(static_cast<int>(args.size()), args.data(),
+                                                       "03_xfem_study [--quick] [--out DIR] [--only ladders,offsets,sweep,fraction]",
+                                                       "output/xfem_study");
   if (!options) return 2;
   try {
     std::filesystem::create_directories(options->out);
     std::cout << "Kerf chapter 3 study" << (options->quick ? " (quick)" : "") << " on " << kerf_measure::cpu_model() << "\n";
     const auto start = xfem_study::clock::now();
     const xfem_study::Sizes sizes = xfem_study::study_sizes(options->quick);
-    xfem_study::run_ladders(sizes, KERF_CCX, options->out);
-    std::ofstream csv(options->out / "fraction.csv"), uncut(options->out / "fraction_uncut.csv");
-    csv << "front,cells,offset,rule,min_fraction,max_fraction,cut_tets,snapped_nodes,enriched_nodes,dofs,lambda_min,lambda_max,"
-           "condition,jacobi_condition,rel_l2_difference,solve_ok\n";
-    uncut << "front,cells,dofs,condition\n";
-    for (const Eigen::Vector3i& cells : sizes.fraction_meshes) xfem_study::run_fraction_study(cells, sizes.fraction_offsets, csv, uncut);
+    if (part("ladders")) {
+      std::ofstream ladder(options->out / "ladder.csv"), reference(options->out / "reference.csv");
+      ladder << xfem_study::ladder_header;
+      reference << "case,model,cells,dofs,seconds,iterations,converged,max_u_m,check_cells,check_rel_l2,ccx_matrix_max_rel,"
+                   "ccx_static_max_rel,ccx_static_s,ccx_matrix_s,x1,z\n";
+      xfem_study::run_ladders(sizes, KERF_CCX, options->out, xfem_study::ladder_place, ladder, &reference, false);
+    }
+    if (part("offsets")) {
+      std::ofstream spread(options->out / "ladder_offsets.csv");
+      spread << xfem_study::ladder_header;
+      for (const xfem_study::CutPlace& place : sizes.spread_places)
+        xfem_study::run_ladders(sizes, KERF_CCX, options->out, place, spread, nullptr, true);
+    }
+    if (part("sweep")) xfem_study::run_front_sweep(sizes, options->out);
+    if (part("fraction")) {
+      std::ofstream csv(options->out / "fraction.csv"), uncut(options->out / "fraction_uncut.csv");
+      csv << "front,cells,offset,rule,min_fraction,max_fraction,cut_tets,snapped_nodes,enriched_nodes,dofs,lambda_min,lambda_max,"
+             "condition,jacobi_condition,rel_l2_difference,solve_ok\n";
+      uncut << "front,cells,dofs,condition\n";
+      for (const Eigen::Vector3i& cells : sizes.fraction_meshes) xfem_study::run_fraction_study(cells, sizes.fraction_offsets, csv, uncut);
+    }
     std::printf("\ntotal %.1f s\n", xfem_study::seconds_since(start));
   } catch (const std::exception& error) {
     std::cerr << "03_xfem_study: " << error.what() << '\n';

@@ -18,9 +18,9 @@ plot "fraction.csv" using (pickf("on_layer", 0, 3)):(pickf("on_layer", 0, 13)) w
 set title "difference from the solution with the cut on the layer"
 set ylabel "relative L2 difference (outside the slab 0.1 < z < 0.1 + d)"
 set key bottom left box opaque font ",9"
-set yrange [1e-12:1]
+set yrange [1e-16:1]
 plot "fraction.csv" using (pickf("on_layer", 0, 3)):(pickf("on_layer", 0, 15)) w p ls 1 t "front on a layer, rule off", \
-     "" using (pickf("on_layer", 1e-4, 3)):(pickf("on_layer", 1e-4, 15) > 0 ? pickf("on_layer", 1e-4, 15) : 1e-12) w p ls 2 t "front on a layer, 10^{-4} (0 drawn at 10^{-12})", \
+     "" using (pickf("on_layer", 1e-4, 3)):(pickf("on_layer", 1e-4, 15) > 1e-15 ? pickf("on_layer", 1e-4, 15) : 1e-15) w p ls 2 t "front on a layer, 10^{-4} (below 10^{-15} drawn at 10^{-15})", \
      "" using (pickf("mid_cell", 0, 3)):(pickf("mid_cell", 0, 15)) w p ls 4 t "front mid-cell (3x4x10), rule off", \
-     "" using (pickf("mid_cell", 1e-4, 3)):(pickf("mid_cell", 1e-4, 15) > 0 ? pickf("mid_cell", 1e-4, 15) : 1e-12) w p ls 3 t "front mid-cell, 10^{-4} (0 drawn at 10^{-12})"
+     "" using (pickf("mid_cell", 1e-4, 3)):(pickf("mid_cell", 1e-4, 15) > 1e-15 ? pickf("mid_cell", 1e-4, 15) : 1e-15) w p ls 3 t "front mid-cell, 10^{-4} (below 10^{-15} drawn at 10^{-15})"
 unset multiplot

@@ -479,3 +479,35 @@ TEST_CASE("cut: the paper's beam with the half-depth cut at z = 0.1") {
     }
   }
 }
+
+TEST_CASE("cut: partially cut is relative to the section: a round-off strip is not, 1e-3 of it is") {
+  // A tet of 1 cm the plane z = 0 cuts in a right triangle with legs 0.005 m along x and y and
+  // the leg x = 0 on the y axis: corner A below, B, C, D above, crossings at the midpoints of
+  // AB, AC, AD. The rectangle covers x <= x1 (and much more than the section in y), so with
+  // x1 = 0 it meets the section only along its leg x = 0, and with x1 = delta > 0 it covers a
+  // strip of width delta along that leg: area about 0.005 delta of the section's 1.25e-5 m^2,
+  // a fraction of about 4 delta / 0.01.
+  Corners X;
+  X << 0, 0, -0.01, 0.01, 0, 0.01, 0, 0.01, 0.01, 0, 0, 0.01;
+  const Eigen::Vector4d lambda(-0.01, 0.01, 0.01, 0.01);
+  REQUIRE(kerf::classify_tet_cut(lambda) == kerf::TetCutCase::cut_one_vertex_apart);
+  const double section = 0.5 * 0.005 * 0.005;
+  const double tolerance = 1e-12 * 0.01; // the order of default_snap_tolerance for a 1 cm mesh
+  const auto state = [&](double x1) {
+    const kerf::RectangleCut cut({-0.01, -0.01, 0}, {0.01 + x1, 0, 0}, {0, 0.03, 0});
+    return kerf::classify_element_cut(X, lambda, cut, tolerance);
+  };
+  // 1e-9 m inside: an overlap of 5e-12 m^2, 4e-7 of the section, far below 1e-4 and far above
+  // the old absolute rule's limit tolerance x diameter = 7e-17 m^2, which counted it as cut.
+  CHECK(state(1e-9) == kerf::ElementCutState::uncut);
+  CHECK(state(0.0) == kerf::ElementCutState::uncut);
+  // 1e-3 of the section's width (5e-6 m) inside: 4e-3 of its area, partially cut.
+  const double delta = 1e-3 * 0.005;
+  CHECK(state(delta) == kerf::ElementCutState::partially_cut);
+  // The threshold itself: just above a strip of area 1e-4 of the section it is cut, just below not.
+  const double at_threshold = kerf::partial_cut_minimum_area_fraction * section / 0.005; // strip width, first order
+  CHECK(state(0.5 * at_threshold) == kerf::ElementCutState::uncut);
+  CHECK(state(2.0 * at_threshold) == kerf::ElementCutState::partially_cut);
+  // The whole section inside: completely cut.
+  CHECK(state(0.006) == kerf::ElementCutState::completely_cut);
+}

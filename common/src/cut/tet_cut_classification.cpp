@@ -59,6 +59,30 @@ const char* to_string(ElementCutState s) {
   return "?";
 }
 
+namespace {
+
+/// The area (m^2) of the convex polygon of the cut points, which all lie in the cut's plane:
+/// in the rectangle's in-plane coordinates, ordered by angle about their mean, by the shoelace formula.
+double section_area(const std::vector<Eigen::Vector3d>& points, const RectangleCut& cut) {
+  if (points.size() < 3) return 0.0;
+  const Eigen::Vector3d e1 = cut.edge1().normalized(), e2 = cut.edge2().normalized();
+  std::vector<Eigen::Vector2d> polygon;
+  for (const Eigen::Vector3d& x : points) polygon.emplace_back((x - cut.origin()).dot(e1), (x - cut.origin()).dot(e2));
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& q : polygon) mean += q / static_cast<double>(polygon.size());
+  std::sort(polygon.begin(), polygon.end(), [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return std::atan2(p.y() - mean.y(), p.x() - mean.x()) < std::atan2(q.y() - mean.y(), q.x() - mean.x());
+  });
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d p = polygon[i] - mean, q = polygon[(i + 1) % polygon.size()] - mean;
+    twice_area += p.x() * q.y() - p.y() * q.x();
+  }
+  return 0.5 * std::abs(twice_area);
+}
+
+} // namespace
+
 ElementCutState classify_element_cut(const Eigen::Matrix<double, 4, 3>& X, const Eigen::Vector4d& lambda,
                                      const RectangleCut& cut, double tolerance) {
   const TetCutCase tet_case = classify_tet_cut(lambda);
@@ -88,13 +112,14 @@ ElementCutState classify_element_cut(const Eigen::Matrix<double, 4, 3>& X, const
                                       [&](const Eigen::Vector3d& p) { return cut.contains_projection(p, tolerance); });
   if (all_inside) return ElementCutState::completely_cut;
 
-  // Partially cut only if the section and the rectangle overlap in an area, not just along
-  // the rectangle's edge (the cut's front) or at a corner: more than a strip of the
-  // tolerance's width along the section.
-  double diameter = 0.0;
-  for (const Eigen::Vector3d& p : points)
-    for (const Eigen::Vector3d& q : points) diameter = std::max(diameter, (p - q).norm());
-  return cut.overlap_area(points, 0.0) > tolerance * diameter ? ElementCutState::partially_cut : ElementCutState::uncut;
+  // Partially cut only if the section and the rectangle overlap in more than
+  // partial_cut_minimum_area_fraction of the section's own area: a section that only touches
+  // the rectangle's edge (the cut's front), or overlaps it in a strip of round-off width, lies
+  // beyond the cut, not on it. Relative to the section, so that the decision does not depend on
+  // the element's size and a move of the front by round-off cannot flip it.
+  const double overlap = cut.overlap_area(points, 0.0);
+  const double area = section_area(points, cut);
+  return overlap > partial_cut_minimum_area_fraction * area ? ElementCutState::partially_cut : ElementCutState::uncut;
 }
 
 MeshCutClassification classify_mesh_cut(const TetMesh& mesh, const LevelSet& level_set, const RectangleCut& cut) {

@@ -99,12 +99,28 @@ const char* to_string(TetCutCase c);
 ///   leaves 2, never 3). Pattern 15 has only 2 separated faces, so ">= 3" could never hold and
 ///   we use "all" instead.
 /// - Partially cut: not all cut points in the closed rectangle, and the section overlaps the
-///   rectangle in an area (more than a strip of the tolerance's width along the section): a
-///   tet whose section only touches the rectangle's edge, the cut's front, lies beyond the cut,
-///   not on it. Uncut: otherwise (the plane cuts the tet, the rectangle misses it). Measuring
-///   the overlap, not counting cut points, also catches a rectangle corner poking into a large
-///   section.
+///   rectangle in more than partial_cut_minimum_area_fraction of the section's own area: a
+///   tet whose section only touches the rectangle's edge, the cut's front, or overlaps it in a
+///   strip of round-off width, lies beyond the cut, not on it. Uncut: otherwise (the plane cuts
+///   the tet, the rectangle misses it). Measuring the overlap, not counting cut points, also
+///   catches a rectangle corner poking into a large section.
 enum class ElementCutState { uncut, touched, partially_cut, completely_cut };
+
+/// The smallest share of a section's area the rectangle must cover for the tet to be partially
+/// cut. Why relative, and why 1e-4:
+/// - Relative to the section, not an absolute strip width, so that a whole column of tets along
+///   the front cannot flip between partially cut and beyond when the front moves by round-off
+///   (an absolute width of the snap tolerance, about 1e-12 of the mesh, was flipped by a move
+///   of a few nanometres), and so that the decision is the same on every mesh size.
+/// - 1e-4 is the minimum volume fraction of the enrichment (default_minimum_volume_fraction):
+///   a piece below it is not kept as a piece of its own, and an overlap below it is not kept as
+///   a cut. It lies far above round-off (1e-16 relative, so an overlap caused by round-off is
+///   some 1e-12 of the section at most) and far below any overlap that carries a visible part of
+///   the cut (for a front parallel to an edge of the section, 1e-4 of the area is a strip of
+///   about 1e-4 of the section's width).
+/// Where the front falls inside that margin the tet is beyond, and the simulated cut is as if
+/// the front stood on the section's edge: a change of the cut's length below 1e-4 of an element.
+inline constexpr double partial_cut_minimum_area_fraction = 1e-4;
 
 /// The enumerator's name, for reports.
 const char* to_string(ElementCutState s);
