@@ -180,7 +180,10 @@ void CutElasticity::assemble_system() {
 // element's blocks are its uncut blocks times a volume ratio. Corotational XFEM is chapter
 // 2's quasi-static Newton iteration on the enriched model, in which each piece of a cut
 // element turns with its own rotation, \f$R_a\f$ and \f$R_b\f$ (eqs. 64-71): the solver is the
-// same function, since it only asks the model for forces and tangents.
+// same function, since it only asks the model for forces and tangents. The report counts the
+// inverted pieces and their volume: a piece's deformation gradient is that of its whole phantom
+// tet (the side's field is linear over it), so an inverted phantom is an inverted piece, but a
+// sliver's inversion weighs next to nothing.
 //
 // Reading Paper 000 alongside: eq. 61's second case should read \f$H_i = -1\f$; eq. 71 has its
 // two case labels swapped relative to eqs. 58-59 and ends in \f$x_{a_j}\f$ where the reference
@@ -205,7 +208,8 @@ void CutElasticity::solve() {
   u_ = result_.u;
   report("newton: " + std::to_string(result_.total_iterations) + " iterations over " + std::to_string(settings.load_steps) +
          " load steps, final relative residual " + std::to_string(result_.history.back().relative_residual) + ", " +
-         std::to_string(result_.last_statistics.inverted_points) + " inverted pieces");
+         std::to_string(result_.last_statistics.inverted_points) + " inverted pieces (" +
+         std::to_string(result_.last_statistics.inverted_volume) + " m^3)");
   if (!result_.converged)
     std::cerr << "warning: " << scene_.source.string() << ": the Newton iteration did not reach the tolerance "
               << settings.tolerance << " in every load step (see the _newton.csv file)\n";
