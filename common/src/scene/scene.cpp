@@ -160,6 +160,182 @@ MeshSpec read_mesh(const ObjectReader& scene, const std::filesystem::path& base)
   return mesh;
 }
 
+
+/// "material": E, nu and rho, each checked (LinearMaterial::check says the same for library callers).
+LinearMaterial read_material(const ObjectReader& r) {
+  LinearMaterial material;
+  if (!r.has("material")) return material;
+  ObjectReader m(r.at("material"), "material", r.file());
+  m.allow_only({"young", "poisson", "density"});
+  material.young = m.number("young", material.young);
+  material.poisson = m.number("poisson", material.poisson);
+  material.density = m.number("density", material.density);
+  if (!(material.young > 0.0)) m.fail("material.young", "expected a positive number (Pa)");
+  if (!(material.poisson > -1.0 && material.poisson <= LinearMaterial::max_poisson))
+    m.fail("material.poisson", "expected a number in (-1, 0.5 - 1e-6]: at 0.5 the material is incompressible, lambda is "
+                               "infinite, and a displacement formulation has no answer");
+  if (!(material.density >= 0.0)) m.fail("material.density", "expected a non-negative number (kg/m^3)");
+  return material;
+}
+
+/// "dirichlet": regions with a displacement, and optionally a rotation about an axis.
+std::vector<DirichletSpec> read_dirichlet(const ObjectReader& r) {
+  std::vector<DirichletSpec> conditions;
+  if (!r.has("dirichlet")) return conditions;
+  const json& list = r.array("dirichlet");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "dirichlet[" + std::to_string(i) + "]";
+    ObjectReader d(list[i], path, r.file());
+    d.allow_only({"region", "displacement", "rotation"});
+    DirichletSpec spec;
+    spec.region = read_region(d.at("region"), path + ".region", r.file());
+    spec.displacement = d.vector<3>("displacement", Eigen::Vector3d::Zero());
+    if (d.has("rotation")) {
+      ObjectReader rotation(d.at("rotation"), path + ".rotation", r.file());
+      rotation.allow_only({"axis", "degrees", "center"});
+      rotation.at("axis");
+      rotation.at("degrees");
+      spec.has_rotation = true;
+      spec.axis = rotation.vector<3>("axis", Eigen::Vector3d::UnitZ());
+      if (!(spec.axis.norm() > 0.0)) rotation.fail(path + ".rotation.axis", "expected a non-zero vector");
+      spec.axis.normalize();
+      spec.degrees = rotation.number("degrees", 0.0);
+      spec.center = rotation.vector<3>("center", Eigen::Vector3d::Zero());
+    }
+    conditions.push_back(spec);
+  }
+  return conditions;
+}
+
+/// "traction": regions with a total force, spread by area over their boundary faces.
+std::vector<TractionSpec> read_tractions(const ObjectReader& r) {
+  std::vector<TractionSpec> tractions;
+  if (!r.has("traction")) return tractions;
+  const json& list = r.array("traction");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "traction[" + std::to_string(i) + "]";
+    ObjectReader t(list[i], path, r.file());
+    t.allow_only({"region", "total_force"});
+    TractionSpec spec;
+    spec.region = read_region(t.at("region"), path + ".region", r.file());
+    t.at("total_force");
+    spec.total_force = t.vector<3>("total_force", Eigen::Vector3d::Zero());
+    tractions.push_back(spec);
+  }
+  return tractions;
+}
+
+/// "cuts": rectangles (a corner and two edges) or triangle-mesh surfaces (paths relative to the scene).
+std::vector<CutSpec> read_cuts(const ObjectReader& r, const std::filesystem::path& base) {
+  std::vector<CutSpec> cuts;
+  if (!r.has("cuts")) return cuts;
+  const json& list = r.array("cuts");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "cuts[" + std::to_string(i) + "]";
+    ObjectReader c(list[i], path, r.file());
+    c.allow_only({"rectangle", "surface"});
+    CutSpec spec;
+    if (c.has("rectangle") == c.has("surface")) c.fail(path, "expected exactly one of \"rectangle\" or \"surface\"");
+    if (c.has("rectangle")) {
+      ObjectReader rect(c.at("rectangle"), path + ".rectangle", r.file());
+      rect.allow_only({"origin", "edge1", "edge2"});
+      rect.at("origin");
+      rect.at("edge1");
+      rect.at("edge2");
+      spec.origin = rect.vector<3>("origin", Eigen::Vector3d::Zero());
+      spec.edge1 = rect.vector<3>("edge1", Eigen::Vector3d::Zero());
+      spec.edge2 = rect.vector<3>("edge2", Eigen::Vector3d::Zero());
+      if (spec.edge1.cross(spec.edge2).norm() == 0.0)
+        rect.fail(path + ".rectangle.edge2", "expected edge1 and edge2 to span a rectangle (they are parallel or zero)");
+    } else {
+      spec.is_rectangle = false;
+      const std::filesystem::path surface = c.text("surface", "");
+      if (surface.empty()) c.fail(path + ".surface", "expected a non-empty path");
+      spec.surface = surface.is_absolute() ? surface : base / surface;
+    }
+    cuts.push_back(spec);
+  }
+  return cuts;
+}
+
+/// "time": static, or Newmark with its step, count and parameters.
+TimeSpec read_time(const ObjectReader& r) {
+  TimeSpec time;
+  if (!r.has("time")) return time;
+  ObjectReader t(r.at("time"), "time", r.file());
+  t.allow_only({"integrator", "dt", "steps", "beta", "gamma", "rayleigh"});
+  time.integrator = t.text("integrator", "static");
+  if (time.integrator == "static") {
+    for (const char* key : {"dt", "steps", "beta", "gamma", "rayleigh"})
+      if (t.has(key)) t.fail(t.field(key), "only meaningful with a dynamic integrator");
+  } else if (time.integrator == "newmark") {
+    t.at("dt");
+    t.at("steps");
+    time.dt = t.number("dt", 0.0);
+    time.steps = t.integer("steps", 0);
+    time.beta = t.number("beta", 0.25);
+    time.gamma = t.number("gamma", 0.5);
+    time.rayleigh = t.vector<2>("rayleigh", Eigen::Vector2d::Zero());
+    if (!(time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
+    if (time.steps < 1) t.fail("time.steps", "expected a positive integer");
+    if (!(time.beta > 0.0 && time.beta <= 0.5)) t.fail("time.beta", "expected a number in (0, 0.5]");
+    if (!(time.gamma >= 0.0 && time.gamma <= 1.0)) t.fail("time.gamma", "expected a number in [0, 1]");
+    if ((time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
+  } else {
+    t.fail("time.integrator", "expected \"static\" or \"newmark\", got \"" + time.integrator + "\"");
+  }
+  return time;
+}
+
+/// "output": how often a time-stepping chapter writes its results.
+int read_output_every(const ObjectReader& r) {
+  int every = 1;
+  if (!r.has("output")) return every;
+  ObjectReader o(r.at("output"), "output", r.file());
+  o.allow_only({"every"});
+  every = o.integer("every", 1);
+  if (every < 1) o.fail("output.every", "expected a positive integer");
+  return every;
+}
+
+/// "quasi_static": load steps and the Newton iteration of chapters 2 and 3.
+QuasiStaticSpec read_quasi_static(const ObjectReader& r) {
+  QuasiStaticSpec spec;
+  if (!r.has("quasi_static")) return spec;
+  ObjectReader q(r.at("quasi_static"), "quasi_static", r.file());
+  q.allow_only({"load_steps", "max_iterations", "tolerance", "tangent", "rotation"});
+  spec.load_steps = q.integer("load_steps", spec.load_steps);
+  spec.max_iterations = q.integer("max_iterations", spec.max_iterations);
+  spec.tolerance = q.number("tolerance", spec.tolerance);
+  spec.tangent = q.text("tangent", spec.tangent);
+  spec.rotation = q.text("rotation", spec.rotation);
+  if (spec.load_steps < 1 || spec.load_steps > 100000) q.fail("quasi_static.load_steps", "expected an integer in [1, 100000]");
+  if (spec.max_iterations < 1) q.fail("quasi_static.max_iterations", "expected a positive integer");
+  if (!(spec.tolerance > 0.0 && spec.tolerance < 1.0)) q.fail("quasi_static.tolerance", "expected a number in (0, 1)");
+  if (spec.tangent != "consistent" && spec.tangent != "warped")
+    q.fail("quasi_static.tangent", "expected \"consistent\" or \"warped\", got \"" + spec.tangent + "\"");
+  if (spec.rotation != "automatic" && spec.rotation != "higham" && spec.rotation != "svd")
+    q.fail("quasi_static.rotation", "expected \"automatic\", \"higham\" or \"svd\", got \"" + spec.rotation + "\"");
+  return spec;
+}
+
+/// "solver": which linear solver, and how hard an iterative one works.
+SolverSettings read_solver(const ObjectReader& r) {
+  SolverSettings solver;
+  if (!r.has("solver")) return solver;
+  ObjectReader s(r.at("solver"), "solver", r.file());
+  s.allow_only({"type", "tolerance", "max_iterations"});
+  solver.type = s.text("type", "cholmod");
+  solver.tolerance = s.number("tolerance", solver.tolerance);
+  solver.max_iterations = s.integer("max_iterations", solver.max_iterations);
+  const auto& type = solver.type;
+  if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol")
+    s.fail("solver.type", "expected \"cholmod\", \"ldlt\", \"cg-jacobi\" or \"cg-ichol\", got \"" + type + "\"");
+  if (!(solver.tolerance > 0.0 && solver.tolerance < 1.0)) s.fail("solver.tolerance", "expected a number in (0, 1)");
+  if (solver.max_iterations < 1) s.fail("solver.max_iterations", "expected a positive integer");
+  return solver;
+}
+
 } // namespace
 
 Eigen::Vector3d DirichletSpec::displacement_at(const Eigen::Vector3d& X) const {
@@ -169,6 +345,8 @@ Eigen::Vector3d DirichletSpec::displacement_at(const Eigen::Vector3d& X) const {
   return (Q - Eigen::Matrix3d::Identity()) * (X - center) + displacement;
 }
 
+// The scene file, section by section: each reader above checks its own fields and names every
+// problem by its path in the file.
 Scene parse_scene(const std::string& json_text, const std::filesystem::path& source, const std::filesystem::path& base) {
   const std::string file = source.string();
   json document;
@@ -189,156 +367,18 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.source = source;
   scene.name = r.text("name", source.stem().string());
   scene.mesh = read_mesh(r, base);
-
-  if (r.has("material")) {
-    ObjectReader m(r.at("material"), "material", file);
-    m.allow_only({"young", "poisson", "density"});
-    scene.material.young = m.number("young", scene.material.young);
-    scene.material.poisson = m.number("poisson", scene.material.poisson);
-    scene.material.density = m.number("density", scene.material.density);
-    if (!(scene.material.young > 0.0)) m.fail("material.young", "expected a positive number (Pa)");
-    if (!(scene.material.poisson > -1.0 && scene.material.poisson <= LinearMaterial::max_poisson))
-      m.fail("material.poisson", "expected a number in (-1, 0.5 - 1e-6]: at 0.5 the material is incompressible, lambda is "
-                                 "infinite, and a displacement formulation has no answer");
-    if (!(scene.material.density >= 0.0)) m.fail("material.density", "expected a non-negative number (kg/m^3)");
-  }
-
+  scene.material = read_material(r);
   scene.model = r.text("model", "linear");
   if (scene.model != "linear" && scene.model != "corotational")
     r.fail("model", "expected \"linear\" or \"corotational\", got \"" + scene.model + "\"");
-
-  if (r.has("dirichlet")) {
-    const json& list = r.array("dirichlet");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const std::string path = "dirichlet[" + std::to_string(i) + "]";
-      ObjectReader d(list[i], path, file);
-      d.allow_only({"region", "displacement", "rotation"});
-      DirichletSpec spec;
-      spec.region = read_region(d.at("region"), path + ".region", file);
-      spec.displacement = d.vector<3>("displacement", Eigen::Vector3d::Zero());
-      if (d.has("rotation")) {
-        ObjectReader rotation(d.at("rotation"), path + ".rotation", file);
-        rotation.allow_only({"axis", "degrees", "center"});
-        rotation.at("axis");
-        rotation.at("degrees");
-        spec.has_rotation = true;
-        spec.axis = rotation.vector<3>("axis", Eigen::Vector3d::UnitZ());
-        if (!(spec.axis.norm() > 0.0)) rotation.fail(path + ".rotation.axis", "expected a non-zero vector");
-        spec.axis.normalize();
-        spec.degrees = rotation.number("degrees", 0.0);
-        spec.center = rotation.vector<3>("center", Eigen::Vector3d::Zero());
-      }
-      scene.dirichlet.push_back(spec);
-    }
-  }
-
+  scene.dirichlet = read_dirichlet(r);
   scene.gravity = r.vector<3>("gravity", Eigen::Vector3d::Zero());
-
-  if (r.has("traction")) {
-    const json& list = r.array("traction");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const std::string path = "traction[" + std::to_string(i) + "]";
-      ObjectReader t(list[i], path, file);
-      t.allow_only({"region", "total_force"});
-      TractionSpec spec;
-      spec.region = read_region(t.at("region"), path + ".region", file);
-      t.at("total_force");
-      spec.total_force = t.vector<3>("total_force", Eigen::Vector3d::Zero());
-      scene.traction.push_back(spec);
-    }
-  }
-
-  if (r.has("cuts")) {
-    const json& list = r.array("cuts");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const std::string path = "cuts[" + std::to_string(i) + "]";
-      ObjectReader c(list[i], path, file);
-      c.allow_only({"rectangle", "surface"});
-      CutSpec spec;
-      if (c.has("rectangle") == c.has("surface")) c.fail(path, "expected exactly one of \"rectangle\" or \"surface\"");
-      if (c.has("rectangle")) {
-        ObjectReader rect(c.at("rectangle"), path + ".rectangle", file);
-        rect.allow_only({"origin", "edge1", "edge2"});
-        rect.at("origin");
-        rect.at("edge1");
-        rect.at("edge2");
-        spec.origin = rect.vector<3>("origin", Eigen::Vector3d::Zero());
-        spec.edge1 = rect.vector<3>("edge1", Eigen::Vector3d::Zero());
-        spec.edge2 = rect.vector<3>("edge2", Eigen::Vector3d::Zero());
-        if (spec.edge1.cross(spec.edge2).norm() == 0.0)
-          rect.fail(path + ".rectangle.edge2", "expected edge1 and edge2 to span a rectangle (they are parallel or zero)");
-      } else {
-        spec.is_rectangle = false;
-        const std::filesystem::path surface = c.text("surface", "");
-        if (surface.empty()) c.fail(path + ".surface", "expected a non-empty path");
-        spec.surface = surface.is_absolute() ? surface : base / surface;
-      }
-      scene.cuts.push_back(spec);
-    }
-  }
-
-  if (r.has("time")) {
-    ObjectReader t(r.at("time"), "time", file);
-    t.allow_only({"integrator", "dt", "steps", "beta", "gamma", "rayleigh"});
-    scene.time.integrator = t.text("integrator", "static");
-    if (scene.time.integrator == "static") {
-      for (const char* key : {"dt", "steps", "beta", "gamma", "rayleigh"})
-        if (t.has(key)) t.fail(t.field(key), "only meaningful with a dynamic integrator");
-    } else if (scene.time.integrator == "newmark") {
-      t.at("dt");
-      t.at("steps");
-      scene.time.dt = t.number("dt", 0.0);
-      scene.time.steps = t.integer("steps", 0);
-      scene.time.beta = t.number("beta", 0.25);
-      scene.time.gamma = t.number("gamma", 0.5);
-      scene.time.rayleigh = t.vector<2>("rayleigh", Eigen::Vector2d::Zero());
-      if (!(scene.time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
-      if (scene.time.steps < 1) t.fail("time.steps", "expected a positive integer");
-      if (!(scene.time.beta > 0.0 && scene.time.beta <= 0.5)) t.fail("time.beta", "expected a number in (0, 0.5]");
-      if (!(scene.time.gamma >= 0.0 && scene.time.gamma <= 1.0)) t.fail("time.gamma", "expected a number in [0, 1]");
-      if ((scene.time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
-    } else {
-      t.fail("time.integrator", "expected \"static\" or \"newmark\", got \"" + scene.time.integrator + "\"");
-    }
-  }
-
-  if (r.has("output")) {
-    ObjectReader o(r.at("output"), "output", file);
-    o.allow_only({"every"});
-    scene.output_every = o.integer("every", 1);
-    if (scene.output_every < 1) o.fail("output.every", "expected a positive integer");
-  }
-
-  if (r.has("quasi_static")) {
-    ObjectReader q(r.at("quasi_static"), "quasi_static", file);
-    q.allow_only({"load_steps", "max_iterations", "tolerance", "tangent", "rotation"});
-    auto& spec = scene.quasi_static;
-    spec.load_steps = q.integer("load_steps", spec.load_steps);
-    spec.max_iterations = q.integer("max_iterations", spec.max_iterations);
-    spec.tolerance = q.number("tolerance", spec.tolerance);
-    spec.tangent = q.text("tangent", spec.tangent);
-    spec.rotation = q.text("rotation", spec.rotation);
-    if (spec.load_steps < 1 || spec.load_steps > 100000) q.fail("quasi_static.load_steps", "expected an integer in [1, 100000]");
-    if (spec.max_iterations < 1) q.fail("quasi_static.max_iterations", "expected a positive integer");
-    if (!(spec.tolerance > 0.0 && spec.tolerance < 1.0)) q.fail("quasi_static.tolerance", "expected a number in (0, 1)");
-    if (spec.tangent != "consistent" && spec.tangent != "warped")
-      q.fail("quasi_static.tangent", "expected \"consistent\" or \"warped\", got \"" + spec.tangent + "\"");
-    if (spec.rotation != "automatic" && spec.rotation != "higham" && spec.rotation != "svd")
-      q.fail("quasi_static.rotation", "expected \"automatic\", \"higham\" or \"svd\", got \"" + spec.rotation + "\"");
-  }
-
-  if (r.has("solver")) {
-    ObjectReader s(r.at("solver"), "solver", file);
-    s.allow_only({"type", "tolerance", "max_iterations"});
-    scene.solver.type = s.text("type", "cholmod");
-    scene.solver.tolerance = s.number("tolerance", scene.solver.tolerance);
-    scene.solver.max_iterations = s.integer("max_iterations", scene.solver.max_iterations);
-    const auto& type = scene.solver.type;
-    if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol")
-      s.fail("solver.type", "expected \"cholmod\", \"ldlt\", \"cg-jacobi\" or \"cg-ichol\", got \"" + type + "\"");
-    if (!(scene.solver.tolerance > 0.0 && scene.solver.tolerance < 1.0)) s.fail("solver.tolerance", "expected a number in (0, 1)");
-    if (scene.solver.max_iterations < 1) s.fail("solver.max_iterations", "expected a positive integer");
-  }
+  scene.traction = read_tractions(r);
+  scene.cuts = read_cuts(r, base);
+  scene.time = read_time(r);
+  scene.output_every = read_output_every(r);
+  scene.quasi_static = read_quasi_static(r);
+  scene.solver = read_solver(r);
   return scene;
 }
 

@@ -88,7 +88,7 @@ struct Scene {
 
 /// Reads and validates a scene file. Every problem (bad JSON, unknown field, wrong type, value
 /// out of range, missing mesh file) is an InputError naming the file and the field path, e.g.
-/// `beam.json: material.poisson: expected a number in (-1, 0.5), got 0.5`.
+/// `beam.json: material.poisson: expected a number in (-1, 0.5 - 1e-6]: ...`.
 Scene read_scene_file(const std::filesystem::path& file);
 
 /// The same from JSON text; `source` names it in messages and relative paths are resolved
