@@ -1,0 +1,207 @@
+#include "mesh/vtk_legacy_mesh_part.hpp"
+
+#include "kerf/app/input_error.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <string_view>
+#include <system_error>
+
+namespace kerf {
+namespace {
+
+/// Walks the whitespace-separated words of a text from a given position, counting lines.
+class WordCursor {
+public:
+  WordCursor(std::string_view text, std::size_t position, int line)
+      : text_(text), position_(position), line_(line) {}
+
+  /// The next word, or an empty view at the end of the text.
+  std::string_view next() {
+    while (position_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[position_]))) {
+      if (text_[position_] == '\n') ++line_;
+      ++position_;
+    }
+    const std::size_t start = position_;
+    while (position_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[position_])))
+      ++position_;
+    return text_.substr(start, position_ - start);
+  }
+
+  /// Where the cursor stands: the byte after the last word read, and its line.
+  std::size_t position() const { return position_; }
+  int line() const { return line_; }
+
+private:
+  std::string_view text_;
+  std::size_t position_;
+  int line_;
+};
+
+/// A word in upper case, for VTK's case-blind keywords.
+std::string upper(std::string_view word) {
+  std::string result(word);
+  std::transform(result.begin(), result.end(), result.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return result;
+}
+
+/// True if `word` starts with `start`: VTK compares keywords by their start ("CELLSx" is CELLS).
+bool starts_with(std::string_view word, std::string_view start) { return word.rfind(start, 0) == 0; }
+
+/// A quoted word for messages, cut short.
+std::string quote(std::string_view word) {
+  constexpr std::size_t max_length = 20;
+  return "'" + std::string(word.substr(0, max_length)) + (word.size() > max_length ? "...'" : "'");
+}
+
+/// Checks the data words of one section as VTK will read them.
+class SectionChecker {
+public:
+  SectionChecker(WordCursor& words, const std::string& file, std::string section)
+      : words_(words), file_(file), section_(std::move(section)) {}
+
+  /// The next word, which must exist.
+  std::string_view word(const std::string& what) {
+    const std::string_view w = words_.next();
+    if (w.empty()) fail("the file ends before " + what);
+    return w;
+  }
+
+  /// The next word as an integer in [lowest, highest].
+  long long integer(long long lowest, long long highest, const std::string& what) {
+    const std::string_view w = word(what);
+    long long value = 0;
+    const auto [end, status] = std::from_chars(w.data(), w.data() + w.size(), value);
+    if (status != std::errc() || end != w.data() + w.size() || value < lowest || value > highest)
+      fail("expected " + what + " (an integer in [" + std::to_string(lowest) + ", " +
+           std::to_string(highest) + "]), found " + quote(w));
+    return value;
+  }
+
+  /// The next word as a finite number of magnitude at most `largest`.
+  void real(double largest, const std::string& what) {
+    std::string_view w = word(what);
+    if (!w.empty() && w.front() == '+') w.remove_prefix(1);
+    double value = 0.0;
+    const auto [end, status] = std::from_chars(w.data(), w.data() + w.size(), value);
+    if (status != std::errc() || end != w.data() + w.size() || !(std::abs(value) <= largest))
+      fail("expected " + what + " (a finite number), found " + quote(w));
+  }
+
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw InputError(file_, "line " + std::to_string(words_.line()), section_ + ": " + problem);
+  }
+
+private:
+  WordCursor& words_;
+  const std::string& file_;
+  std::string section_;
+};
+
+/// The largest id an integer array of VTK type `type` holds: 64-bit types name themselves.
+long long largest_integer(std::string_view type) {
+  return type.find("64") != std::string_view::npos ? std::numeric_limits<long long>::max()
+                                                   : std::numeric_limits<int>::max();
+}
+
+/// Count-prefixed cell lists (formats before 5): `cells` lists of "n id id ...", `size` integers in all.
+void check_legacy_cell_lists(SectionChecker& check, long long cells, long long size) {
+  long long used = 0;
+  for (long long c = 0; c < cells; ++c) {
+    const std::string what = "cell " + std::to_string(c);
+    if (used >= size)
+      check.fail("the " + std::to_string(cells) + " cells need more than the " +
+                 std::to_string(size) + " integers announced");
+    const long long ids = check.integer(0, size - used - 1, "the point count of " + what);
+    used += 1 + ids;
+    for (long long a = 0; a < ids; ++a)
+      check.integer(0, std::numeric_limits<int>::max(), "a point id of " + what);
+  }
+  if (used != size)
+    check.fail("the " + std::to_string(cells) + " cells hold " + std::to_string(used) +
+               " integers, not the " + std::to_string(size) + " announced");
+}
+
+/// OFFSETS and CONNECTIVITY (format 5): `num_offsets` offsets, then `num_ids` point ids.
+void check_offsets_and_connectivity(SectionChecker& check, long long num_offsets, long long num_ids) {
+  for (const auto& [keyword, count] : {std::pair{"OFFSETS", num_offsets}, std::pair{"CONNECTIVITY", num_ids}}) {
+    const std::string_view found = check.word(std::string("the ") + keyword + " line");
+    if (!starts_with(upper(found), keyword))
+      check.fail(std::string("expected ") + keyword + ", found " + quote(found));
+    const long long largest = largest_integer(check.word(std::string("the type of ") + keyword));
+    for (long long i = 0; i < count; ++i)
+      check.integer(0, largest, std::string("entry ") + std::to_string(i) + " of " + keyword);
+  }
+}
+
+} // namespace
+
+std::string vtk_legacy_mesh_part(const std::string& text, const std::string& file) {
+  // The header is four lines: version, title, ASCII or BINARY, DATASET. VTK checks their
+  // content; we need the version and the encoding.
+  std::size_t line_start = 0;
+  std::string header[4];
+  for (auto& line : header) {
+    const std::size_t line_end = std::min(text.find('\n', line_start), text.size());
+    line = text.substr(line_start, line_end - line_start);
+    line_start = std::min(line_end + 1, text.size());
+  }
+  const bool ascii = starts_with(upper(WordCursor(header[2], 0, 3).next()), "ASCII");
+  const std::size_t version_at = upper(header[0]).find("VERSION");
+  const bool offsets_layout = version_at != std::string::npos &&
+                              WordCursor(header[0], version_at + 7, 1).next() >= "5";
+
+  const auto max_count = static_cast<long long>(text.size());
+  int line_number = 5;
+  while (line_start < text.size()) {
+    const std::size_t line_end = std::min(text.find('\n', line_start), text.size());
+    WordCursor words(std::string_view(text).substr(0, line_end), line_start, line_number);
+    const std::string keyword = upper(words.next());
+    if (starts_with(keyword, "POINT_DATA") || starts_with(keyword, "CELL_DATA"))
+      return text.substr(0, line_start);
+    std::size_t next_line = line_end + 1;
+    int next_line_number = line_number + 1;
+    const auto section = [&](const char* name, int num_counts) {
+      // The counts are on the keyword's line; the data follows on the next lines.
+      SectionChecker on_line(words, file, name);
+      long long counts[2] = {0, 0};
+      for (int c = 0; c < num_counts; ++c)
+        counts[c] = on_line.integer(0, max_count, "the count on the " + std::string(name) + " line");
+      WordCursor data(text, std::min(line_end + 1, text.size()), line_number + 1);
+      SectionChecker check(data, file, name);
+      if (ascii) {
+        if (std::string(name) == "POINTS") {
+          const std::string type = upper(on_line.word("the type of the coordinates"));
+          if (!starts_with(type, "FLOAT") && !starts_with(type, "DOUBLE"))
+            on_line.fail("the coordinates must be float or double, not " + quote(type));
+          const double largest = starts_with(type, "FLOAT") ? std::numeric_limits<float>::max()
+                                                             : std::numeric_limits<double>::max();
+          for (long long i = 0; i < 3 * counts[0]; ++i)
+            check.real(largest, "coordinate " + std::to_string(i % 3) + " of point " + std::to_string(i / 3));
+        } else if (std::string(name) == "CELLS") {
+          if (offsets_layout)
+            check_offsets_and_connectivity(check, counts[0], counts[1]);
+          else
+            check_legacy_cell_lists(check, counts[0], counts[1]);
+        } else {
+          for (long long c = 0; c < counts[0]; ++c)
+            check.integer(0, 255, "the type of cell " + std::to_string(c));
+        }
+        next_line = data.position();
+        next_line_number = data.line();
+      }
+    };
+    if (starts_with(keyword, "POINTS")) section("POINTS", 1);
+    else if (starts_with(keyword, "CELLS")) section("CELLS", 2);
+    else if (starts_with(keyword, "CELL_TYPES")) section("CELL_TYPES", 1);
+    line_start = next_line;
+    line_number = next_line_number;
+  }
+  return text;
+}
+
+} // namespace kerf
