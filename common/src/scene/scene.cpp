@@ -186,7 +186,8 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   json document;
   try {
     document = json::parse(json_text);
-  } catch (const json::parse_error& error) {
+  } catch (const json::exception& error) {
+    // Mostly a parse_error, but a number too large for a double ("3e666") is an out_of_range.
     // nlohmann's message names the byte offset; keep it to one line.
     std::string what = error.what();
     for (char& c : what)
