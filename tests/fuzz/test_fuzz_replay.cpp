@@ -62,6 +62,20 @@ TEST_CASE("every seed and regression input is read into a valid result or refuse
   }
 }
 
+TEST_CASE("the inputs that used to be read wrongly without a word are now refused") {
+  // Crashes show up on their own; these were accepted with a value wrapped round to a valid
+  // one, so only their verdict tells that the fix holds.
+  for (const char* name : {"negative_steps_wrap_to_one.json", "node_index_wraps_to_zero.json"}) {
+    CAPTURE(name);
+    const std::string bytes = read_bytes(fuzz_folder / "regressions" / "scene" / name);
+    CHECK(kerf::fuzz::feed_to_reader(kerf::fuzz::fuzzed_reader("scene"), bytes) ==
+          kerf::fuzz::Verdict::rejected);
+  }
+  const std::string seed = read_bytes(fuzz_folder / "corpus" / "scene" / "big_integer.json");
+  CHECK(kerf::fuzz::feed_to_reader(kerf::fuzz::fuzzed_reader("scene"), seed) ==
+        kerf::fuzz::Verdict::rejected);
+}
+
 TEST_CASE("fuzzed_reader knows every reader by its corpus folder's name, and no other") {
   for (const auto& entry : fs::directory_iterator(fuzz_folder / "corpus"))
     CHECK_NOTHROW(kerf::fuzz::fuzzed_reader(entry.path().filename().string()));
