@@ -55,7 +55,10 @@ bool starts_with(std::string_view word, std::string_view start) { return word.rf
 /// A quoted word for messages, cut short.
 std::string quote(std::string_view word) {
   constexpr std::size_t max_length = 20;
-  return "'" + std::string(word.substr(0, max_length)) + (word.size() > max_length ? "...'" : "'");
+  std::string quoted = "'";
+  quoted.append(word.substr(0, max_length));
+  quoted += word.size() > max_length ? "...'" : "'";
+  return quoted;
 }
 
 /// Checks the data words of one section as VTK will read them.
