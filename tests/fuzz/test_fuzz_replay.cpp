@@ -1,7 +1,7 @@
 // Replays the fuzzers' inputs through the readers in the normal test suite (g++, no clang).
 //
-// tests/fuzz/corpus/<reader>/ holds the seeds the fuzzers start from: small valid files and
-// slightly malformed ones, written by hand. tests/fuzz/regressions/<reader>/ holds every input
+// tests/fuzz/corpus/<reader>/ holds the seeds the fuzzers start from: small valid files (named
+// valid_*, written by hand or, for .vtk, by VTK's own writer) and slightly malformed ones. tests/fuzz/regressions/<reader>/ holds every input
 // a fuzzer found that crashed, hung or broke a promise, kept after the bug was fixed. Each one
 // must now be either read into a valid mesh (or scene) or refused with an InputError; nothing
 // else may escape (see feed_to_reader()).
@@ -14,6 +14,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -27,24 +29,20 @@ std::string read_bytes(const fs::path& file) {
   return bytes.str();
 }
 
-/// How many of the inputs in `folder` were accepted and rejected (a missing folder holds none).
-struct Tally {
-  int accepted = 0;
-  int rejected = 0;
-};
-
-/// Feeds every file of `folder` to `reader`, checking that each gets a verdict.
-Tally replay_folder(const kerf::fuzz::FuzzedReader& reader, const fs::path& folder) {
-  Tally tally;
-  if (!fs::is_directory(folder)) return tally;
+/// Feeds every file of `folder` to `reader` and returns the files with their verdicts; each
+/// file must get one (a missing folder holds none).
+std::vector<std::pair<fs::path, kerf::fuzz::Verdict>> replay_folder(const kerf::fuzz::FuzzedReader& reader,
+                                                                   const fs::path& folder) {
+  std::vector<std::pair<fs::path, kerf::fuzz::Verdict>> verdicts;
+  if (!fs::is_directory(folder)) return verdicts;
   for (const auto& entry : fs::directory_iterator(folder)) {
     if (!entry.is_regular_file()) continue;
     CAPTURE(entry.path());
     kerf::fuzz::Verdict verdict = kerf::fuzz::Verdict::rejected;
     REQUIRE_NOTHROW(verdict = kerf::fuzz::feed_to_reader(reader, read_bytes(entry.path())));
-    ++(verdict == kerf::fuzz::Verdict::accepted ? tally.accepted : tally.rejected);
+    verdicts.emplace_back(entry.path(), verdict);
   }
-  return tally;
+  return verdicts;
 }
 
 const fs::path fuzz_folder = fs::path(KERF_SOURCE_DIR) / "tests" / "fuzz";
@@ -54,11 +52,19 @@ const fs::path fuzz_folder = fs::path(KERF_SOURCE_DIR) / "tests" / "fuzz";
 TEST_CASE("every seed and regression input is read into a valid result or refused with an InputError") {
   for (const kerf::fuzz::FuzzedReader& reader : kerf::fuzz::fuzzed_readers()) {
     CAPTURE(reader.name);
-    const Tally seeds = replay_folder(reader, fuzz_folder / "corpus" / reader.name);
     replay_folder(reader, fuzz_folder / "regressions" / reader.name);
-    // The seeds must reach both ends of the reader, or the fuzzer starts half blind.
-    CHECK(seeds.accepted > 0);
-    CHECK(seeds.rejected > 0);
+    // A seed named valid_* is a good file and must be read; every other seed is broken on
+    // purpose and must be refused. Both kinds are needed, or the fuzzer starts half blind.
+    int valid = 0;
+    int broken = 0;
+    for (const auto& [file, verdict] : replay_folder(reader, fuzz_folder / "corpus" / reader.name)) {
+      CAPTURE(file);
+      const bool is_valid = file.filename().string().rfind("valid_", 0) == 0;
+      ++(is_valid ? valid : broken);
+      CHECK(verdict == (is_valid ? kerf::fuzz::Verdict::accepted : kerf::fuzz::Verdict::rejected));
+    }
+    CHECK(valid > 0);
+    CHECK(broken > 0);
   }
 }
 
