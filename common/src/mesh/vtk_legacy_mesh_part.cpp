@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string_view>
 #include <system_error>
@@ -141,6 +142,31 @@ void check_offsets_and_connectivity(SectionChecker& check, long long num_offsets
   }
 }
 
+/// Count-prefixed cell lists in a binary file (formats before 5): `size` big-endian 32-bit
+/// integers from `at`, which VTK walks list by list trusting each count.
+void check_binary_cell_lists(const std::string& text, std::size_t at, long long cells, long long size,
+                             const SectionChecker& check) {
+  if (text.size() < at || static_cast<unsigned long long>(text.size() - at) < 4ULL * static_cast<unsigned long long>(size))
+    check.fail("the file ends inside the " + std::to_string(size) + " integers of the cell lists");
+  const auto integer_at = [&text, at](long long i) {
+    std::uint32_t value = 0;
+    for (int b = 0; b < 4; ++b)
+      value = (value << 8) | static_cast<unsigned char>(text[at + 4 * static_cast<std::size_t>(i) + b]);
+    return static_cast<std::int32_t>(value);
+  };
+  long long used = 0;
+  for (long long c = 0; c < cells; ++c) {
+    const long long ids = used < size ? integer_at(used) : -1;
+    if (ids < 0 || ids > size - used - 1)
+      check.fail("the point count of cell " + std::to_string(c) + " does not fit in the " +
+                 std::to_string(size) + " integers announced");
+    used += 1 + ids;
+  }
+  if (used != size)
+    check.fail("the " + std::to_string(cells) + " cells hold " + std::to_string(used) +
+               " integers, not the " + std::to_string(size) + " announced");
+}
+
 } // namespace
 
 std::string vtk_legacy_mesh_part(const std::string& text, const std::string& file) {
@@ -196,6 +222,8 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
         }
         next_line = data.position();
         next_line_number = data.line();
+      } else if (std::string(name) == "CELLS" && !offsets_layout) {
+        check_binary_cell_lists(text, line_end + 1, counts[0], counts[1], check);
       }
     };
     if (starts_with(keyword, "POINTS")) section("POINTS", 1);

@@ -20,7 +20,8 @@ namespace kerf {
 ///   per point (within float's range for `float`), and for the cells either count-prefixed
 ///   lists of integer ids that fill exactly the announced size (format before 5) or OFFSETS
 ///   and CONNECTIVITY lists of integers of the announced lengths (format 5), then one cell type
-///   in [0, 255] per cell; a binary file gets the count checks only;
+///   in [0, 255] per cell; in a binary file, the count-prefixed cell lists (format before 5)
+///   must fill exactly the announced size, since VTK walks them trusting each count;
 /// - everything from the first POINT_DATA or CELL_DATA line on is cut off: Kerf reads no
 ///   fields, and those sections are where the reader is most easily crashed.
 ///
