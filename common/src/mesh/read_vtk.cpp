@@ -4,6 +4,7 @@
 #include "kerf/mesh/check_tet_mesh.hpp"
 #include "mesh/vtk_error_catcher.hpp"
 #include "mesh/vtk_legacy_mesh_part.hpp"
+#include "mesh/vtu_counts.hpp"
 
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
@@ -144,6 +145,15 @@ std::string lower_extension(const std::filesystem::path& file) {
   return extension;
 }
 
+/// The whole content of a file, bytes as they are.
+std::string file_bytes(const std::filesystem::path& file, const std::string& name) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (!in) throw InputError(name, "file", "cannot be read");
+  return bytes.str();
+}
+
 } // namespace
 
 TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
@@ -154,6 +164,7 @@ TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
   vtkNew<VtkMessageCatcher> catcher;
   vtkSmartPointer<vtkUnstructuredGrid> grid;
   if (lower_extension(file) == ".vtu") {
+    check_vtu_counts(file_bytes(file, name), name);
     vtkNew<vtkXMLUnstructuredGridReader> reader;
     // The XML reader parses with helper objects of its own; these setters hand them our
     // observer, so that their complaints reach us too.
@@ -163,11 +174,7 @@ TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
     grid = run_reader(*reader, *catcher, name, warnings);
   } else {
     // VTK reads the checked part from memory, never the file itself (vtk_legacy_mesh_part.hpp).
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    if (!in) throw InputError(name, "file", "cannot be read");
-    const std::string mesh_part = vtk_legacy_mesh_part(bytes.str(), name);
+    const std::string mesh_part = vtk_legacy_mesh_part(file_bytes(file, name), name);
     if (mesh_part.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
       throw InputError(name, "file", "a legacy .vtk mesh above 2 GB is not supported; save it as .vtu");
     vtkNew<vtkUnstructuredGridReader> reader;

@@ -22,6 +22,8 @@ namespace kerf {
 ///   not even see them, and the points and cells are checked before VTK reads them (counts
 ///   against the file's size, and in ASCII the data against the counts), because VTK 9.1's
 ///   legacy reader crashes on a missing count or a short list instead of reporting it.
+/// - In a .vtu file, the count attributes (NumberOfPoints, NumberOfComponents, ...) must be
+///   integers that fit in 32 bits, which VTK's XML reader does not check.
 /// - Cell offsets must increase from 0 to the length of the connectivity, with one cell type
 ///   per cell (VTK's readers do not check this, and walking such cells crashes).
 ///
