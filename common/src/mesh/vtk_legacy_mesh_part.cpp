@@ -142,6 +142,67 @@ void check_offsets_and_connectivity(SectionChecker& check, long long num_offsets
   }
 }
 
+/// True for the array types VTK's legacy reader knows (it compares them in lower case, by start).
+bool is_known_array_type(const std::string& lower_type) {
+  constexpr std::string_view types[] = {"bit", "unsigned_char", "char", "signed_char", "unsigned_short",
+                                        "short", "unsigned_int", "int", "unsigned_long", "long",
+                                        "float", "double", "vtkidtype", "vtktypeint64", "vtktypeuint64",
+                                        "string", "utf8_string"};
+  for (const std::string_view type : types)
+    if (lower_type == type) return true;
+  return false;
+}
+
+/// The size in bytes of one value of a binary legacy array, 0 for the types whose binary
+/// layout we do not walk (bits, strings, and the integers whose width VTK's writer chooses).
+std::size_t binary_value_size(const std::string& lower_type) {
+  if (lower_type == "char" || lower_type == "unsigned_char" || lower_type == "signed_char") return 1;
+  if (lower_type == "short" || lower_type == "unsigned_short") return 2;
+  if (lower_type == "int" || lower_type == "unsigned_int" || lower_type == "float") return 4;
+  if (lower_type == "double" || lower_type == "vtktypeint64" || lower_type == "vtktypeuint64") return 8;
+  return 0;
+}
+
+/// The arrays of a FIELD block: "name components tuples type", then the values (words in an
+/// ASCII file, raw bytes in a binary one). VTK's legacy reader dereferences a null pointer
+/// when an array of the field data cannot be read.
+void check_field_arrays(SectionChecker& check, WordCursor& data, const std::string& text, bool ascii,
+                        long long arrays, long long max_count) {
+  for (long long a = 0; a < arrays; ++a) {
+    const std::string what = "array " + std::to_string(a);
+    if (upper(check.word("the name of " + what)) == "NULL_ARRAY") continue;
+    const long long components = check.integer(0, max_count, "the number of components of " + what);
+    const long long tuples = check.integer(0, max_count, "the number of tuples of " + what);
+    std::string type(check.word("the type of " + what));
+    std::transform(type.begin(), type.end(), type.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (!is_known_array_type(type)) check.fail("the type of " + what + ", " + quote(type) + ", is not a VTK array type");
+    if (components > 0 && tuples > max_count / components)
+      check.fail(what + " announces more values than the file can hold");
+    if (!ascii) {
+      const std::size_t value_size = binary_value_size(type);
+      if (value_size == 0)
+        check.fail("Kerf does not check binary field data of type " + quote(type) +
+                   "; save the file as ASCII or as .vtu");
+      // The values start after the newline that ends the type, and end before another one.
+      const std::size_t start = data.position() + 1;
+      const auto bytes = static_cast<unsigned long long>(components * tuples) * value_size;
+      if (start > text.size() || text.size() - start < bytes)
+        check.fail("the file ends inside the values of " + what);
+      data = WordCursor(text, start + static_cast<std::size_t>(bytes), data.line() + 1);
+      continue;
+    }
+    const bool numbers = type != "string" && type != "utf8_string";
+    for (long long i = 0; i < components * tuples; ++i) {
+      const std::string value = "value " + std::to_string(i) + " of " + what;
+      if (numbers)
+        check.real(std::numeric_limits<double>::max(), value);
+      else
+        check.word(value);
+    }
+  }
+}
+
 /// Count-prefixed cell lists in a binary file (formats before 5): `size` big-endian 32-bit
 /// integers from `at`, which VTK walks list by list trusting each count.
 void check_binary_cell_lists(const std::string& text, std::size_t at, long long cells, long long size,
@@ -226,6 +287,16 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
         check_binary_cell_lists(text, line_end + 1, counts[0], counts[1], check);
       }
     };
+    if (starts_with(keyword, "FIELD")) {
+      SectionChecker on_line(words, file, "FIELD");
+      on_line.word("the name of the field data");
+      const long long arrays = on_line.integer(0, max_count, "the number of arrays");
+      WordCursor data(text, std::min(line_end + 1, text.size()), line_number + 1);
+      SectionChecker check(data, file, "FIELD");
+      check_field_arrays(check, data, text, ascii, arrays, max_count);
+      next_line = data.position();
+      next_line_number = data.line();
+    }
     if (starts_with(keyword, "POINTS")) section("POINTS", 1);
     else if (starts_with(keyword, "CELLS")) section("CELLS", 2);
     else if (starts_with(keyword, "CELL_TYPES")) section("CELL_TYPES", 1);

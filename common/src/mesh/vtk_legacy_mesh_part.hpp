@@ -22,6 +22,9 @@ namespace kerf {
 ///   and CONNECTIVITY lists of integers of the announced lengths (format 5), then one cell type
 ///   in [0, 255] per cell; in a binary file, the count-prefixed cell lists (format before 5)
 ///   must fill exactly the announced size, since VTK walks them trusting each count;
+/// - a FIELD block (field data of the whole grid) must hold arrays of known types with as many
+///   values as they announce, finite ones in ASCII; VTK dereferences a null pointer when one of
+///   them cannot be read. In a binary file only fixed-width numeric arrays are accepted;
 /// - everything from the first POINT_DATA or CELL_DATA line on is cut off: Kerf reads no
 ///   fields, and those sections are where the reader is most easily crashed.
 ///
