@@ -240,19 +240,46 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
     line = text.substr(line_start, line_end - line_start);
     line_start = std::min(line_end + 1, text.size());
   }
+  // VTK reads the header word by word: a keyword glued to the dataset type ("UNSTRUCTURED_GRID`FIELD")
+  // would reach it unchecked, so the DATASET line must be two words and nothing else.
+  WordCursor dataset(header[3], 0, 4);
+  dataset.next();
+  const bool is_unstructured = upper(dataset.next()) == "UNSTRUCTURED_GRID";
+  if (!is_unstructured || !dataset.next().empty())
+    throw InputError(file, "line 4", "expected 'DATASET UNSTRUCTURED_GRID' alone on the line");
   const bool ascii = starts_with(upper(WordCursor(header[2], 0, 3).next()), "ASCII");
+  // The version decides the cell layout, so it must read as "major.minor", as VTK parses it.
   const std::size_t version_at = upper(header[0]).find("VERSION");
-  const bool offsets_layout = version_at != std::string::npos &&
-                              WordCursor(header[0], version_at + 7, 1).next() >= "5";
+  const std::string_view version =
+      version_at == std::string::npos ? std::string_view() : WordCursor(header[0], version_at + 7, 1).next();
+  int major = 0;
+  int minor = 0;
+  const auto [major_end, major_status] = std::from_chars(version.data(), version.data() + version.size(), major);
+  const bool has_dot = major_status == std::errc() && major_end != version.data() + version.size() && *major_end == '.';
+  const auto [minor_end, minor_status] =
+      has_dot ? std::from_chars(major_end + 1, version.data() + version.size(), minor)
+              : std::from_chars_result{major_end, std::errc::invalid_argument};
+  if (!has_dot || minor_status != std::errc() || minor_end != version.data() + version.size())
+    throw InputError(file, "line 1", "expected '# vtk DataFile Version MAJOR.MINOR', found " + quote(header[0]));
+  const bool offsets_layout = major >= 5;
 
   const auto max_count = static_cast<long long>(text.size());
+  // VTK's reader dereferences a null pointer when the points or the cells never come, so the
+  // part it sees must hold all three sections (Kerf needs them anyway).
+  bool has_points = false, has_cells = false, has_cell_types = false;
+  const auto checked_part = [&](std::size_t end) {
+    for (const auto& [seen, keyword] : {std::pair{has_points, "POINTS"}, std::pair{has_cells, "CELLS"},
+                                        std::pair{has_cell_types, "CELL_TYPES"}})
+      if (!seen) throw InputError(file, keyword, std::string("the file has no ") + keyword + " line");
+    return text.substr(0, end);
+  };
   int line_number = 5;
   while (line_start < text.size()) {
     const std::size_t line_end = std::min(text.find('\n', line_start), text.size());
     WordCursor words(std::string_view(text).substr(0, line_end), line_start, line_number);
     const std::string keyword = upper(words.next());
     if (starts_with(keyword, "POINT_DATA") || starts_with(keyword, "CELL_DATA"))
-      return text.substr(0, line_start);
+      return checked_part(line_start);
     std::size_t next_line = line_end + 1;
     int next_line_number = line_number + 1;
     const auto section = [&](const char* name, int num_counts) {
@@ -297,13 +324,20 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
       next_line = data.position();
       next_line_number = data.line();
     }
-    if (starts_with(keyword, "POINTS")) section("POINTS", 1);
-    else if (starts_with(keyword, "CELLS")) section("CELLS", 2);
-    else if (starts_with(keyword, "CELL_TYPES")) section("CELL_TYPES", 1);
+    if (starts_with(keyword, "POINTS")) {
+      section("POINTS", 1);
+      has_points = true;
+    } else if (starts_with(keyword, "CELLS")) {
+      section("CELLS", 2);
+      has_cells = true;
+    } else if (starts_with(keyword, "CELL_TYPES")) {
+      section("CELL_TYPES", 1);
+      has_cell_types = true;
+    }
     line_start = next_line;
     line_number = next_line_number;
   }
-  return text;
+  return checked_part(text.size());
 }
 
 } // namespace kerf

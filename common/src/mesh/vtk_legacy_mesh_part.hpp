@@ -14,8 +14,9 @@ namespace kerf {
 /// reads one sends it down error paths that dereference null pointers or free memory twice.
 /// So, before it reads a byte:
 ///
-/// - every POINTS, CELLS and CELL_TYPES line must carry its counts, each at most the file's size
-///   in bytes (every item takes at least one byte);
+/// - the fourth line must be `DATASET UNSTRUCTURED_GRID` and nothing else;
+/// - there must be a POINTS, a CELLS and a CELL_TYPES line, each with its counts, each count
+///   at most the file's size in bytes (every item takes at least one byte);
 /// - in an ASCII file, the data after them must be what they announce: 3 finite coordinates
 ///   per point (within float's range for `float`), and for the cells either count-prefixed
 ///   lists of integer ids that fill exactly the announced size (format before 5) or OFFSETS
