@@ -231,8 +231,8 @@ void check_binary_cell_lists(const std::string& text, std::size_t at, long long 
 } // namespace
 
 std::string vtk_legacy_mesh_part(const std::string& text, const std::string& file) {
-  // The header is four lines: version, title, ASCII or BINARY, DATASET. VTK checks their
-  // content; we need the version and the encoding.
+  // The header is four lines: version, title, ASCII or BINARY, DATASET. We check the first
+  // and the last, and read the encoding; VTK checks the rest.
   std::size_t line_start = 0;
   std::string header[4];
   for (auto& line : header) {
