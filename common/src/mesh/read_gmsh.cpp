@@ -331,11 +331,13 @@ void read_nodes_v4(LineReader& reader, GmshContents& contents) {
       throw reader.error("the node blocks hold more nodes than the " + std::to_string(count) +
                          " that $Nodes announces");
     // The tags of a block come first, one per line, then the coordinates in the same order.
-    std::vector<long long> tags(in_block);
-    for (auto& tag : tags) {
+    // They grow as they are read, not to the block's count at once: a corrupt count must end
+    // in a message about the file, not in an allocation of gigabytes.
+    std::vector<long long> tags;
+    for (std::size_t i = 0; i < in_block; ++i) {
       const auto words = split(data_line(reader, section, count, read, "nodes"));
       if (words.size() != 1) throw reader.error("expected one node tag on the line");
-      tag = parse_integer(words[0], reader, "the node tag");
+      tags.push_back(parse_integer(words[0], reader, "the node tag"));
     }
     const std::size_t num_values = 3 + (parametric ? dimension : 0);
     for (const long long tag : tags) {

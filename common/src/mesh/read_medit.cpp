@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cstdint>
 #include <fstream>
 #include <istream>
 #include <string>
@@ -105,10 +106,19 @@ int skipped_section_width(const std::string& keyword) {
   return -1;
 }
 
-/// Reads a section count, which must not be negative.
-Eigen::Index read_count(WordReader& reader, const std::string& section) {
+/// Reads a section count, which must not be negative and must fit in the file: each of its
+/// entries has `words_per_entry` words of at least one character and a separator. Checking
+/// this before the section is read keeps a corrupt count from allocating gigabytes (or, times
+/// the width, from overflowing) for data the file cannot hold.
+Eigen::Index read_count(WordReader& reader, const std::string& section, int words_per_entry,
+                        std::uintmax_t file_size) {
   const long long count = reader.expect_integer("the number of " + section);
   if (count < 0) throw reader.error(section + ": the count must not be negative");
+  const std::uintmax_t max_count = (file_size + 1) / (2 * static_cast<std::uintmax_t>(words_per_entry));
+  if (static_cast<std::uintmax_t>(count) > max_count)
+    throw reader.error(section + ": the count " + std::to_string(count) + " is more than the " +
+                       std::to_string(file_size) + " bytes of the file can hold (the file is "
+                       "truncated or the count is wrong)");
   return static_cast<Eigen::Index>(count);
 }
 
@@ -121,6 +131,7 @@ TetMesh read_medit(const std::filesystem::path& file, std::ostream* warnings) {
   if (!in || std::filesystem::is_directory(file))
     throw InputError(name, "file", "cannot be opened for reading");
   WordReader reader(in, name);
+  const std::uintmax_t file_size = std::filesystem::file_size(file);
 
   const std::string first = reader.expect("the header");
   if (first != "MeshVersionFormatted")
@@ -141,7 +152,7 @@ TetMesh read_medit(const std::filesystem::path& file, std::ostream* warnings) {
     } else if (keyword == "Vertices") {
       if (has_vertices) throw reader.error("a second Vertices section");
       has_vertices = true;
-      mesh.nodes.resize(read_count(reader, "Vertices"), 3);
+      mesh.nodes.resize(read_count(reader, "Vertices", 4, file_size), 3);
       for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v) {
         const std::string what = "vertex " + std::to_string(v + 1) + " of Vertices";
         for (int c = 0; c < 3; ++c) mesh.nodes(v, c) = reader.expect_real(what);
@@ -150,7 +161,7 @@ TetMesh read_medit(const std::filesystem::path& file, std::ostream* warnings) {
     } else if (keyword == "Tetrahedra") {
       if (has_tetrahedra) throw reader.error("a second Tetrahedra section");
       has_tetrahedra = true;
-      mesh.tets.resize(read_count(reader, "Tetrahedra"), 4);
+      mesh.tets.resize(read_count(reader, "Tetrahedra", 5, file_size), 4);
       for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
         const std::string what = "tetrahedron " + std::to_string(t + 1) + " of Tetrahedra";
         for (int a = 0; a < 4; ++a) {
@@ -169,7 +180,7 @@ TetMesh read_medit(const std::filesystem::path& file, std::ostream* warnings) {
       throw reader.error("the mesh has " + keyword + "; Kerf reads tetrahedra only");
     } else if (const int width = skipped_section_width(keyword); width > 0) {
       // Normals and tangents hold real numbers, the rest integers: a real number reads both.
-      const Eigen::Index count = read_count(reader, keyword);
+      const Eigen::Index count = read_count(reader, keyword, width, file_size);
       for (Eigen::Index i = 0; i < count * width; ++i) reader.expect_real(keyword);
     } else {
       throw reader.error("unknown keyword '" + keyword +

@@ -3,9 +3,13 @@
 #include "kerf/app/input_error.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
 #include "mesh/vtk_error_catcher.hpp"
+#include "mesh/vtk_legacy_mesh_part.hpp"
+#include "mesh/vtu_counts.hpp"
 
 #include <vtkAlgorithm.h>
+#include <vtkCellArray.h>
 #include <vtkCellType.h>
+#include <vtkCell.h>
 #include <vtkCellTypes.h>
 #include <vtkCommand.h>
 #include <vtkExecutive.h>
@@ -14,13 +18,16 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
 #include <cctype>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,11 +56,40 @@ vtkSmartPointer<vtkUnstructuredGrid> run_reader(vtkAlgorithm& reader, VtkMessage
   return grid;
 }
 
+/// Refuses a grid whose cells cannot be walked safely. VTK's readers take a file's offsets on
+/// trust: an offset that goes backwards, or past the end of the connectivity, reaches
+/// vtkUnstructuredGrid::GetCellPoints() as a negative length and crashes it, and a cell type
+/// list of the wrong length makes GetCellType() read past its end. A point id out of range
+/// would make any later look-up of the cell's points read outside the points.
+void check_cells(vtkUnstructuredGrid& grid, const std::string& file) {
+  if (grid.GetNumberOfCells() == 0) return;
+  vtkCellArray* cells = grid.GetCells();
+  if (!cells || !cells->IsValid())
+    throw InputError(file, "cells", "the cell offsets do not increase from 0 to the number of "
+                                    "point ids in the connectivity");
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c) {
+    cells->GetCellAtId(c, ids);
+    for (vtkIdType a = 0; a < ids->GetNumberOfIds(); ++a)
+      if (ids->GetId(a) < 0 || ids->GetId(a) >= grid.GetNumberOfPoints())
+        throw InputError(file, "cell " + std::to_string(c),
+                         "node index " + std::to_string(ids->GetId(a)) + " is outside [0, " +
+                             std::to_string(grid.GetNumberOfPoints()) + ")");
+  }
+  vtkUnsignedCharArray* types = grid.GetCellTypesArray();
+  const vtkIdType num_types = types ? types->GetNumberOfValues() : 0;
+  if (num_types != cells->GetNumberOfCells())
+    throw InputError(file, "cell types", "the file gives " + std::to_string(num_types) +
+                                             " cell types for " +
+                                             std::to_string(cells->GetNumberOfCells()) + " cells");
+}
+
 /// Copies the points and the tetrahedra of a VTK grid into a TetMesh.
 TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
   TetMesh mesh;
   if (!grid.GetPoints() || grid.GetNumberOfPoints() == 0)
     throw InputError(file, "points", "the file has no points");
+  check_cells(grid, file);
   mesh.nodes.resize(grid.GetNumberOfPoints(), 3);
   for (vtkIdType v = 0; v < grid.GetNumberOfPoints(); ++v) {
     double x[3];
@@ -64,7 +100,6 @@ TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
   // First pass: decide which cells to keep and check that they are all of one order.
   std::vector<vtkIdType> kept;
   int kept_type = VTK_EMPTY_CELL;
-  vtkNew<vtkGenericCell> cell;
   for (vtkIdType c = 0; c < grid.GetNumberOfCells(); ++c) {
     const int type = grid.GetCellType(c);
     if (type == VTK_TETRA || type == VTK_QUADRATIC_TETRA) {
@@ -75,8 +110,10 @@ TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
       kept.push_back(c);
       continue;
     }
-    grid.GetCell(c, cell);
-    if (type != VTK_EMPTY_CELL && cell->GetCellDimension() == 3)
+    // The dimension comes from a cell of the type alone, not from grid.GetCell(), which would
+    // also gather the cell's points and faces from what the file says they are.
+    const auto cell = vtkSmartPointer<vtkCell>::Take(vtkGenericCell::InstantiateCell(type));
+    if (type != VTK_EMPTY_CELL && cell && cell->GetCellDimension() == 3)
       throw InputError(file, "cell " + std::to_string(c),
                        std::string("cell type ") + vtkCellTypes::GetClassNameFromTypeId(type) +
                            " is not supported; Kerf reads VTK_TETRA and VTK_QUADRATIC_TETRA");
@@ -92,7 +129,7 @@ TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
                        "expected " + std::to_string(per_tet) + " points, found " +
                            std::to_string(ids->GetNumberOfIds()));
     for (int a = 0; a < per_tet; ++a) {
-      // check_tet_mesh() checks the range; clamping only keeps a huge id from wrapping around.
+      // check_cells() checked the range; clamping keeps an id past 2^31 from wrapping around.
       const vtkIdType id = std::clamp<vtkIdType>(ids->GetId(a), -1, std::numeric_limits<int>::max());
       mesh.tets(static_cast<Eigen::Index>(t), a) = static_cast<int>(id);
     }
@@ -108,6 +145,15 @@ std::string lower_extension(const std::filesystem::path& file) {
   return extension;
 }
 
+/// The whole content of a file, bytes as they are.
+std::string file_bytes(const std::filesystem::path& file, const std::string& name) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (!in) throw InputError(name, "file", "cannot be read");
+  return bytes.str();
+}
+
 } // namespace
 
 TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
@@ -118,6 +164,7 @@ TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
   vtkNew<VtkMessageCatcher> catcher;
   vtkSmartPointer<vtkUnstructuredGrid> grid;
   if (lower_extension(file) == ".vtu") {
+    check_vtu_counts(file_bytes(file, name), name);
     vtkNew<vtkXMLUnstructuredGridReader> reader;
     // The XML reader parses with helper objects of its own; these setters hand them our
     // observer, so that their complaints reach us too.
@@ -126,8 +173,13 @@ TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
     reader->SetFileName(name.c_str());
     grid = run_reader(*reader, *catcher, name, warnings);
   } else {
+    // VTK reads the checked part from memory, never the file itself (vtk_legacy_mesh_part.hpp).
+    const std::string mesh_part = vtk_legacy_mesh_part(file_bytes(file, name), name);
+    if (mesh_part.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw InputError(name, "file", "a legacy .vtk mesh above 2 GB is not supported; save it as .vtu");
     vtkNew<vtkUnstructuredGridReader> reader;
-    reader->SetFileName(name.c_str());
+    reader->ReadFromInputStringOn();
+    reader->SetBinaryInputString(mesh_part.data(), static_cast<int>(mesh_part.size()));
     grid = run_reader(*reader, *catcher, name, warnings);
   }
 

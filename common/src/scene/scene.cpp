@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <sstream>
 
 namespace kerf {
@@ -65,6 +66,16 @@ public:
     if (!has(key)) return fallback;
     const json& value = object_.at(key);
     if (!value.is_number_integer()) fail(field(key), "expected an integer, got " + type_name(value));
+    return as_int(value, field(key));
+  }
+  /// A JSON integer as an int; get<int>() alone would wrap 4294967297 round to 1 without a word.
+  int as_int(const json& value, const std::string& name) const {
+    constexpr long long lowest = std::numeric_limits<int>::min();
+    constexpr long long highest = std::numeric_limits<int>::max();
+    const bool fits = value.is_number_unsigned()
+                          ? value.get<unsigned long long>() <= static_cast<unsigned long long>(highest)
+                          : value.get<long long>() >= lowest && value.get<long long>() <= highest;
+    if (!fits) fail(name, "expected an integer that fits in 32 bits, got " + value.dump());
     return value.get<int>();
   }
   std::string text(const std::string& key, const std::string& fallback) const {
@@ -116,9 +127,10 @@ NodeRegion read_region(const json& value, const std::string& path, const std::st
     const json& nodes = r.array("nodes");
     if (nodes.empty()) r.fail(r.field("nodes"), "expected at least one node index");
     for (std::size_t i = 0; i < nodes.size(); ++i) {
-      if (!nodes[i].is_number_integer() || nodes[i].get<long long>() < 0)
-        r.fail(r.field("nodes") + "[" + std::to_string(i) + "]", "expected a non-negative integer node index");
-      region.node_list.push_back(nodes[i].get<int>());
+      const std::string name = r.field("nodes") + "[" + std::to_string(i) + "]";
+      if (!nodes[i].is_number_integer() || (!nodes[i].is_number_unsigned() && nodes[i].get<long long>() < 0))
+        r.fail(name, "expected a non-negative integer node index");
+      region.node_list.push_back(r.as_int(nodes[i], name));
     }
   }
   return region;
@@ -352,7 +364,8 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   json document;
   try {
     document = json::parse(json_text);
-  } catch (const json::parse_error& error) {
+  } catch (const json::exception& error) {
+    // Mostly a parse_error, but a number too large for a double ("3e666") is an out_of_range.
     // nlohmann's message names the byte offset; keep it to one line.
     std::string what = error.what();
     for (char& c : what)

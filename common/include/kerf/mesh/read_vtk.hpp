@@ -18,7 +18,14 @@ namespace kerf {
 /// - Cells of dimension 0, 1 or 2 (vertices, lines, triangles, quads) are skipped without a
 ///   word; other 3D cells (hexahedra, wedges, pyramids, ...) are rejected.
 /// - Every point of the file becomes a node, in the file's order, so point indices in the
-///   file and in the mesh agree.
+///   file and in the mesh agree. Point and cell data are not read; in a legacy file VTK does
+///   not even see them, and the points and cells are checked before VTK reads them (counts
+///   against the file's size, and in ASCII the data against the counts), because VTK 9.1's
+///   legacy reader crashes on a missing count or a short list instead of reporting it.
+/// - In a .vtu file, the count attributes (NumberOfPoints, NumberOfComponents, ...) must be
+///   integers that fit in 32 bits, which VTK's XML reader does not check.
+/// - Cell offsets must increase from 0 to the length of the connectivity, with one cell type
+///   per cell (VTK's readers do not check this, and walking such cells crashes).
 ///
 /// VTK's readers do not throw: they report problems as events. We listen to the reader's
 /// error and warning events (so VTK prints nothing on its own), turn the first error into an
