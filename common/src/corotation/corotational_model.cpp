@@ -20,14 +20,6 @@ Eigen::Matrix<double, n, 3> element_rows(const NodeMatrix& nodes, const TetMatri
   return X;
 }
 
-/// The displacements of element t's n nodes, one row each.
-template <int n>
-Eigen::Matrix<double, n, 3> displacement_rows(const TetMesh& mesh, const Eigen::VectorXd& u, Eigen::Index t) {
-  Eigen::Matrix<double, n, 3> u_e;
-  for (int a = 0; a < n; ++a) u_e.row(a) = u.segment<3>(3 * mesh.tets(t, a)).transpose();
-  return u_e;
-}
-
 } // namespace
 
 CorotationalModel::CorotationalModel(const TetMesh& mesh, const LinearMaterial& material) : mesh_(mesh), material_(material) {
@@ -73,7 +65,7 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
     if (mesh_.order() == 1) {
       const auto e = static_cast<std::size_t>(t);
       const Eigen::Matrix<double, 4, 3> X = element_rows<4>(mesh_.nodes, mesh_.tets, t);
-      const Eigen::Matrix<double, 4, 3> u_e = displacement_rows<4>(mesh_, u, t);
+      const Eigen::Matrix<double, 4, 3> u_e = tet_node_displacements<4>(mesh_, u, t);
       Eigen::Matrix<double, 12, 1> f = Eigen::Matrix<double, 12, 1>::Zero();
       Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
       add_corotated_point<4>(tet4_stiffness_[e], tet4_gradients_[e], X, u_e, tet4_volumes_[e], mu, lambda, rotation, tangent, f,
@@ -82,7 +74,7 @@ CorotationStatistics CorotationalModel::assemble(const Eigen::VectorXd& u, Rotat
       if (assembler) assembler->add_element<12>(t, Kt, *rhs_free);
     } else {
       const Eigen::Matrix<double, 10, 3> X = element_rows<10>(mesh_.nodes, mesh_.tets, t);
-      const Eigen::Matrix<double, 10, 3> u_e = displacement_rows<10>(mesh_, u, t);
+      const Eigen::Matrix<double, 10, 3> u_e = tet_node_displacements<10>(mesh_, u, t);
       Eigen::Matrix<double, 30, 1> f = Eigen::Matrix<double, 30, 1>::Zero();
       Eigen::Matrix<double, 30, 30> Kt = Eigen::Matrix<double, 30, 30>::Zero();
       for (int q = 0; q < 4; ++q) {
@@ -113,13 +105,13 @@ double CorotationalModel::energy(const Eigen::VectorXd& u, RotationMethod rotati
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     if (mesh_.order() == 1) {
       const auto e = static_cast<std::size_t>(t);
-      add(tet4_stiffness_[e], tet4_gradients_[e], element_rows<4>(mesh_.nodes, mesh_.tets, t), displacement_rows<4>(mesh_, u, t));
+      add(tet4_stiffness_[e], tet4_gradients_[e], element_rows<4>(mesh_.nodes, mesh_.tets, t), tet_node_displacements<4>(mesh_, u, t));
     } else {
       for (int q = 0; q < 4; ++q) {
         const auto p = static_cast<std::size_t>(4 * t + q);
         Eigen::Matrix<double, 30, 30> K_q = Eigen::Matrix<double, 30, 30>::Zero();
         add_stiffness_integrand<10>(tet10_gradients_[p], tet10_weights_[p], mu, lambda, K_q);
-        add(K_q, tet10_gradients_[p], element_rows<10>(mesh_.nodes, mesh_.tets, t), displacement_rows<10>(mesh_, u, t));
+        add(K_q, tet10_gradients_[p], element_rows<10>(mesh_.nodes, mesh_.tets, t), tet_node_displacements<10>(mesh_, u, t));
       }
     }
   }

@@ -173,6 +173,17 @@ MeshSpec read_mesh(const ObjectReader& scene, const std::filesystem::path& base)
 }
 
 
+/// The list r[key] read entry by entry: read(entry, "key[i]") for each, in order; an absent
+/// key is an empty list.
+template <class Entry, class ReadEntry>
+std::vector<Entry> read_list(const ObjectReader& r, const std::string& key, ReadEntry read) {
+  std::vector<Entry> entries;
+  if (!r.has(key)) return entries;
+  const json& list = r.array(key);
+  for (std::size_t i = 0; i < list.size(); ++i) entries.push_back(read(list[i], key + "[" + std::to_string(i) + "]"));
+  return entries;
+}
+
 /// "material": E, nu and rho, each checked (LinearMaterial::check says the same for library callers).
 LinearMaterial read_material(const ObjectReader& r) {
   LinearMaterial material;
@@ -192,12 +203,8 @@ LinearMaterial read_material(const ObjectReader& r) {
 
 /// "dirichlet": regions with a displacement, and optionally a rotation about an axis.
 std::vector<DirichletSpec> read_dirichlet(const ObjectReader& r) {
-  std::vector<DirichletSpec> conditions;
-  if (!r.has("dirichlet")) return conditions;
-  const json& list = r.array("dirichlet");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string path = "dirichlet[" + std::to_string(i) + "]";
-    ObjectReader d(list[i], path, r.file());
+  return read_list<DirichletSpec>(r, "dirichlet", [&](const json& entry, const std::string& path) {
+    ObjectReader d(entry, path, r.file());
     d.allow_only({"region", "displacement", "rotation"});
     DirichletSpec spec;
     spec.region = read_region(d.at("region"), path + ".region", r.file());
@@ -214,37 +221,27 @@ std::vector<DirichletSpec> read_dirichlet(const ObjectReader& r) {
       spec.degrees = rotation.number("degrees", 0.0);
       spec.center = rotation.vector<3>("center", Eigen::Vector3d::Zero());
     }
-    conditions.push_back(spec);
-  }
-  return conditions;
+    return spec;
+  });
 }
 
 /// "traction": regions with a total force, spread by area over their boundary faces.
 std::vector<TractionSpec> read_tractions(const ObjectReader& r) {
-  std::vector<TractionSpec> tractions;
-  if (!r.has("traction")) return tractions;
-  const json& list = r.array("traction");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string path = "traction[" + std::to_string(i) + "]";
-    ObjectReader t(list[i], path, r.file());
+  return read_list<TractionSpec>(r, "traction", [&](const json& entry, const std::string& path) {
+    ObjectReader t(entry, path, r.file());
     t.allow_only({"region", "total_force"});
     TractionSpec spec;
     spec.region = read_region(t.at("region"), path + ".region", r.file());
     t.at("total_force");
     spec.total_force = t.vector<3>("total_force", Eigen::Vector3d::Zero());
-    tractions.push_back(spec);
-  }
-  return tractions;
+    return spec;
+  });
 }
 
 /// "cuts": rectangles (a corner and two edges) or triangle-mesh surfaces (paths relative to the scene).
 std::vector<CutSpec> read_cuts(const ObjectReader& r, const std::filesystem::path& base) {
-  std::vector<CutSpec> cuts;
-  if (!r.has("cuts")) return cuts;
-  const json& list = r.array("cuts");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string path = "cuts[" + std::to_string(i) + "]";
-    ObjectReader c(list[i], path, r.file());
+  return read_list<CutSpec>(r, "cuts", [&](const json& entry, const std::string& path) {
+    ObjectReader c(entry, path, r.file());
     c.allow_only({"rectangle", "surface"});
     CutSpec spec;
     if (c.has("rectangle") == c.has("surface")) c.fail(path, "expected exactly one of \"rectangle\" or \"surface\"");
@@ -265,9 +262,8 @@ std::vector<CutSpec> read_cuts(const ObjectReader& r, const std::filesystem::pat
       if (surface.empty()) c.fail(path + ".surface", "expected a non-empty path");
       spec.surface = surface.is_absolute() ? surface : base / surface;
     }
-    cuts.push_back(spec);
-  }
-  return cuts;
+    return spec;
+  });
 }
 
 /// "time": static, or Newmark with its step, count and parameters.

@@ -25,6 +25,11 @@ Eigen::Matrix<double, 24, 1> gather(const TetMatrix& slots, const Eigen::VectorX
   return ue;
 }
 
+/// A side's 12 corner displacements (node-major) as 4 rows, the layout add_corotated_point takes.
+Eigen::Matrix<double, 4, 3> corner_rows(const Eigen::Matrix<double, 12, 1>& u_side) {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 4>>(u_side.data()).transpose();
+}
+
 void scatter_add(const TetMatrix& slots, Eigen::Index t, const Eigen::Matrix<double, 24, 1>& fe, Eigen::VectorXd& f) {
   for (int s = 0; s < 8; ++s)
     if (slots(t, s) >= 0) f.segment<3>(3 * slots(t, s)) += fe.segment<3>(3 * s);
@@ -114,8 +119,7 @@ CorotationStatistics XfemModel::assemble(const Eigen::VectorXd& u, RotationMetho
     const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh_, t);
     if (!has_enriched_corner(t)) {
       // Most tets: chapter 2's corotated Tet4, with no enriched DOFs to carry along.
-      Eigen::Matrix<double, 4, 3> u_e;
-      for (int a = 0; a < 4; ++a) u_e.row(a) = u.segment<3>(3 * mesh_.tets(t, a)).transpose();
+      const Eigen::Matrix<double, 4, 3> u_e = tet_node_displacements<4>(mesh_, u, t);
       Eigen::Matrix<double, 12, 1> f = Eigen::Matrix<double, 12, 1>::Zero();
       Eigen::Matrix<double, 12, 12> Kt = Eigen::Matrix<double, 12, 12>::Zero();
       add_corotated_point<4>(stiffness_[k], gradients_[k], X, u_e, volumes_[k], mu, lambda, rotation, tangent, f,
@@ -134,7 +138,7 @@ CorotationStatistics XfemModel::assemble(const Eigen::VectorXd& u, RotationMetho
       if (fraction <= 0.0) continue;
       const Eigen::Matrix<double, 12, 24> T = side_operator(psi(t, side));
       const Eigen::Matrix<double, 12, 1> u_side = T * ue;
-      const Eigen::Matrix<double, 4, 3> u_rows = Eigen::Map<const Eigen::Matrix<double, 3, 4>>(u_side.data()).transpose();
+      const Eigen::Matrix<double, 4, 3> u_rows = corner_rows(u_side);
       Eigen::Matrix<double, 12, 1> f_side = Eigen::Matrix<double, 12, 1>::Zero();
       Eigen::Matrix<double, 12, 12> K_side = Eigen::Matrix<double, 12, 12>::Zero();
       const Eigen::Matrix<double, 12, 12> K_fraction = fraction * stiffness_[k];
@@ -163,7 +167,7 @@ double XfemModel::energy(const Eigen::VectorXd& u, bool corotated, RotationMetho
       const double fraction = has_enriched_corner(t) ? enrichment_.piece_fraction(t, side) : (side > 0 ? 1.0 : 0.0);
       if (fraction <= 0.0) continue;
       const Eigen::Matrix<double, 12, 1> u_side = side_operator(psi(t, side)) * ue;
-      const Eigen::Matrix<double, 4, 3> u_rows = Eigen::Map<const Eigen::Matrix<double, 3, 4>>(u_side.data()).transpose();
+      const Eigen::Matrix<double, 4, 3> u_rows = corner_rows(u_side);
       Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
       if (corotated) R = element_rotation(Eigen::Matrix3d::Identity() + u_rows.transpose() * gradients_[k], rotation).R;
       const Eigen::Matrix<double, 12, 1> d = corotated_displacement<4>(R, X, u_rows);

@@ -37,6 +37,15 @@ inline Eigen::Matrix<double, 4, 3> tet_corners(const TetMesh& mesh, Eigen::Index
   return X;
 }
 
+/// The displacements of tet t's first n nodes (n = 4 or 10), one row each, from a node-major
+/// vector u (component p of node v at 3 v + p).
+template <int n>
+Eigen::Matrix<double, n, 3> tet_node_displacements(const TetMesh& mesh, const Eigen::VectorXd& u, Eigen::Index t) {
+  Eigen::Matrix<double, n, 3> u_e;
+  for (int a = 0; a < n; ++a) u_e.row(a) = u.template segment<3>(3 * mesh.tets(t, a)).transpose();
+  return u_e;
+}
+
 /// The local corner pairs of the six tet edges, in the order of the Tet10 mid-edge nodes 4..9.
 inline constexpr int tet_edge_corners[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
 
