@@ -330,7 +330,8 @@ int main(int argc, char** argv) {
     const std::optional<kerf_measure::RunOptions> options =
         kerf_measure::parse_run_options(argc, argv, "bench_corotation [--quick] [--out FILE.md]", {});
     if (!options) return 2;
-    const auto& [quick, out] = *options;
+    const bool quick = options->quick;
+    const std::filesystem::path& out = options->out;
     const int batch = quick ? 256 : 4096;
     double sink = 0.0;
     std::vector<bench::ElementTiming> elements = bench::time_elements<4>(batch, sink);

@@ -12,7 +12,9 @@
      (c) the time to build the pattern and the scatter map (SparseAssembler's constructor);
      (d) the solve: CHOLMOD (analyse + factorise + solve), and CG with a Jacobi or an
          incomplete Cholesky preconditioner to a relative residual of 1e-8;
-     (e) CalculiX's wall time for the same mesh and load, when ccx was found at configure time.
+     (e) CalculiX's wall time for the same mesh and load, when ccx was found at configure time;
+     (f) CHOLMOD with each fill-reducing ordering (kerf::CholmodSolver): analyse and factorise
+         times, the factor's entries and the factorisation's flops.
    Every number is the best of at least three runs and of at least half a second of repeats:
    the minimum is what the work costs, the rest is noise from the machine. The report is a
    markdown table on stdout and, with --out, in a file. */
@@ -27,6 +29,7 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
+#include "kerf/solve/cholmod_solver.hpp"
 #include "kerf/solve/linear_solver.hpp"
 #include "measure.hpp"
 
@@ -81,6 +84,14 @@ double element_stiffness_sweep(const kerf::TetMesh& mesh, const kerf::LinearMate
   return sink;
 }
 
+/// (f) CHOLMOD with one fill-reducing ordering on one mesh.
+struct OrderingTiming {
+  std::string ordering;
+  double analyze_seconds = 1e300, factorize_seconds = 1e300;
+  double factor_entries = 0, factorisation_flops = 0;
+  int ordered_vertices = 0;
+};
+
 /// One row of the report.
 struct Measurement {
   std::string element;
@@ -94,7 +105,32 @@ struct Measurement {
   double cg_jacobi_seconds = 0, cg_ichol_seconds = 0;
   int cg_jacobi_iterations = 0, cg_ichol_iterations = 0;
   double ccx_seconds = -1; ///< -1: not measured
+  std::vector<OrderingTiming> orderings;
 };
+
+/// (f): the best of two fresh solvers per ordering (a factorisation on a large mesh with a
+/// poor ordering takes seconds; two runs of it are enough to see the machine's noise).
+std::vector<OrderingTiming> time_orderings(const Eigen::SparseMatrix<double>& K) {
+  std::vector<OrderingTiming> timings;
+  for (const char* ordering : {"cholmod", "amd", "metis", "nested-dissection"}) {
+    OrderingTiming t;
+    t.ordering = ordering;
+    for (int r = 0; r < 2; ++r) {
+      kerf::CholmodSolver solver(ordering);
+      auto start = clock::now();
+      solver.analyze_pattern(K);
+      t.analyze_seconds = std::min(t.analyze_seconds, std::chrono::duration<double>(clock::now() - start).count());
+      start = clock::now();
+      solver.factorize(K);
+      t.factorize_seconds = std::min(t.factorize_seconds, std::chrono::duration<double>(clock::now() - start).count());
+      t.factor_entries = solver.statistics().factor_entries;
+      t.factorisation_flops = solver.statistics().factorisation_flops;
+      t.ordered_vertices = solver.statistics().ordered_vertices;
+    }
+    timings.push_back(t);
+  }
+  return timings;
+}
 
 /// Preconditioner set-up plus a CG solve from zero to 1e-8; returns {seconds, iterations}.
 std::pair<double, int> time_cg(const std::string& type, const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& rhs) {
@@ -163,6 +199,7 @@ Measurement measure(int k, int order, const std::string& ccx, const std::filesys
   m.pipeline_seconds = m.pattern_seconds + num_tets / m.assembled_blocks_per_second + m.analyze_seconds +
                        m.factorize_seconds + m.solve_seconds;
 
+  m.orderings = time_orderings(K);
   std::tie(m.cg_jacobi_seconds, m.cg_jacobi_iterations) = time_cg("cg-jacobi", K, rhs);
   std::tie(m.cg_ichol_seconds, m.cg_ichol_iterations) = time_cg("cg-ichol", K, rhs);
 
@@ -210,6 +247,20 @@ std::string report(const std::vector<Measurement>& rows, const std::string& ccx)
                   m.cg_jacobi_iterations, m.cg_ichol_seconds, m.cg_ichol_iterations, ccx_text.c_str());
     s << line;
   }
+  s << "\n### CHOLMOD's fill-reducing orderings (best of 2)\n\n"
+    << "\"cholmod\": CHOLMOD's own choice on the graph of the unknowns; the others on the graph of the nodes "
+    << "(kerf::unknown_blocks). Flops and factor entries are CHOLMOD's counts for the ordering.\n\n"
+    << "| element | cells | DOFs | ordering | graph vertices | analyse (s) | factorise (s) | analyse + factorise (s) "
+    << "| factor entries | flops | Gflop/s |\n"
+    << "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Measurement& m : rows)
+    for (const OrderingTiming& t : m.orderings) {
+      std::snprintf(line, sizeof line, "| %s | %s | %d | %s | %d | %.4f | %.4f | %.4f | %.3g | %.3g | %.1f |\n", m.element.c_str(),
+                    m.cells.c_str(), m.dofs, t.ordering.c_str(), t.ordered_vertices, t.analyze_seconds, t.factorize_seconds,
+                    t.analyze_seconds + t.factorize_seconds, t.factor_entries, t.factorisation_flops,
+                    t.factorisation_flops / t.factorize_seconds * 1e-9);
+      s << line;
+    }
   s << "\nCalculiX: " << (ccx.empty() ? std::string("not found at configure time") : ccx + " (static deck, whole process)")
     << "\n";
   return s.str();
@@ -223,7 +274,8 @@ int main(int argc, char** argv) {
     const std::optional<kerf_measure::RunOptions> options =
         kerf_measure::parse_run_options(argc, argv, "bench_linear_fem [--quick] [--out FILE.md]", {});
     if (!options) return 2;
-    const auto& [quick, out] = *options;
+    const bool quick = options->quick;
+    const std::filesystem::path& out = options->out;
     const std::string ccx = KERF_CCX;
     const std::filesystem::path work = std::filesystem::temp_directory_path() / "kerf_bench_calculix";
     // (order, k): Tet4 up to about 110k DOFs, Tet10 up to about 110k DOFs (target 2).

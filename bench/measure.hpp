@@ -15,7 +15,9 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace kerf_measure {
 
@@ -76,22 +78,42 @@ inline std::string environment(const char* name) {
 struct RunOptions {
   bool quick = false;        ///< --quick: tiny sizes, every code path, a few seconds
   std::filesystem::path out; ///< --out PATH: where the program writes its results
+  std::string only;          ///< --only A,B: the parts to run (comma-separated); all by default
+
+  /// Whether part `name` runs: it is listed in --only, or --only was not given.
+  bool runs(const std::string& name) const {
+    return only.empty() || ("," + only + ",").find("," + name + ",") != std::string::npos;
+  }
 };
 
-/// Reads `[--quick] [--out PATH]` from the command line. `out` starts as `default_out` (empty
-/// means "no file"). On anything else, or a --out without a path, it prints
-/// "usage: <usage>" to stderr and returns nothing: the caller then exits with code 2, the
+/// Reads `[--quick] [--out PATH] [--only PARTS]` from the command line. `out` starts as
+/// `default_out` (empty means "no file"); `--only` is accepted only if `parts` (the program's
+/// part names) is not empty, and every name it lists must be one of them. On anything else it
+/// prints "usage: <usage>" to stderr and returns nothing: the caller then exits with code 2, the
 /// usual code for a bad command line.
 inline std::optional<RunOptions> parse_run_options(int argc, char** argv, const std::string& usage,
-                                                   const std::filesystem::path& default_out) {
+                                                   const std::filesystem::path& default_out,
+                                                   const std::vector<std::string>& parts = {}) {
   RunOptions options;
   options.out = default_out;
+  const auto known_parts = [&](const std::string& list) {
+    std::istringstream names(list);
+    std::string name;
+    bool any = false;
+    while (std::getline(names, name, ',')) {
+      if (std::find(parts.begin(), parts.end(), name) == parts.end()) return false;
+      any = true;
+    }
+    return any;
+  };
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--quick")
       options.quick = true;
     else if (arg == "--out" && i + 1 < argc)
       options.out = argv[++i];
+    else if (arg == "--only" && i + 1 < argc && known_parts(argv[i + 1]))
+      options.only = argv[++i];
     else {
       std::cerr << "usage: " << usage << '\n';
       return std::nullopt;

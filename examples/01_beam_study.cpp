@@ -5,6 +5,7 @@
    Sample runs:
      01_beam_study --quick --out output/beam_study_quick
      01_beam_study --out figures/01_linear_fem
+     01_beam_study --only calculix --out figures/01_linear_fem   (one part: ladder, locking, calculix)
 
    Description: the beam of chapter 1 (0.03 x 0.06 x 0.2 m, E = 300 kPa, nu = 0.35,
    rho = 1070 kg/m^3, clamped at z = 0) under two loads: (a) gravity g = (9.81, 0, 0) m/s^2,
@@ -465,8 +466,9 @@ void run_calculix_comparison(const StudyPlan& plan, const std::filesystem::path&
 
       const std::filesystem::path scene = work / (jobname + ".json");
       std::ofstream(scene) << beam_scene_json(cells, order, load);
+      // One thread, as ccx runs (kerf::run_calculix): a serial Kerf against a serial CalculiX.
       const std::string command =
-          "\"" + chapter_binary + "\" --quiet --scene \"" + scene.string() + "\" --out \"" + (work / jobname).string() + "\"";
+          "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 \"" + chapter_binary + "\" --quiet --scene \"" + scene.string() + "\" --out \"" + (work / jobname).string() + "\"";
       const double kerf_seconds = best_wall_time([&] { return timed_system(command); });
 
       const double diff_static = relative_max_difference(u_kerf, u_ccx_static);
@@ -486,19 +488,23 @@ void run_calculix_comparison(const StudyPlan& plan, const std::filesystem::path&
 int main(int argc, char** argv) {
   try {
     const std::optional<kerf_measure::RunOptions> options =
-        kerf_measure::parse_run_options(argc, argv, "01_beam_study [--quick] [--out DIR]", "output/beam_study");
+        kerf_measure::parse_run_options(argc, argv, "01_beam_study [--quick] [--out DIR] [--only ladder,locking,calculix]",
+                                        "output/beam_study", {"ladder", "locking", "calculix"});
     if (!options) return 2;
-    const auto& [quick, out] = *options;
+    const bool quick = options->quick;
+    const std::filesystem::path& out = options->out;
     std::filesystem::create_directories(out);
     const beam_study::StudyPlan plan = quick ? beam_study::quick_plan() : beam_study::full_plan();
     const auto start = beam_study::clock::now();
-    beam_study::run_ladder(plan, out);
-    beam_study::run_locking(plan, out);
-    const std::string ccx = KERF_CCX;
-    if (ccx.empty())
-      std::cout << "\nccx not found at configure time: no CalculiX comparison\n";
-    else
-      beam_study::run_calculix_comparison(plan, out, ccx, KERF_CHAPTER01_BINARY);
+    if (options->runs("ladder")) beam_study::run_ladder(plan, out);
+    if (options->runs("locking")) beam_study::run_locking(plan, out);
+    if (options->runs("calculix")) {
+      const std::string ccx = KERF_CCX;
+      if (ccx.empty())
+        std::cout << "\nccx not found at configure time: no CalculiX comparison\n";
+      else
+        beam_study::run_calculix_comparison(plan, out, ccx, KERF_CHAPTER01_BINARY);
+    }
     std::cout << "\nwrote " << out.string() << "/*.csv in " << beam_study::seconds_since(start) << " s\n";
     return 0;
   } catch (const std::exception& e) {

@@ -606,7 +606,8 @@ int main(int argc, char** argv) {
     const std::optional<kerf_measure::RunOptions> options =
         kerf_measure::parse_run_options(argc, argv, "02_corotation_study [--quick] [--out DIR]", "output/corotation_study");
     if (!options) return 2;
-    const auto& [quick, out] = *options;
+    const bool quick = options->quick;
+    const std::filesystem::path& out = options->out;
     std::filesystem::create_directories(out);
     namespace study = corotation_study;
     const auto start = study::clock::now();

@@ -650,40 +650,30 @@ void run_front_sweep(const Sizes& sizes, const std::filesystem::path& out) {
 int main(int argc, char** argv) {
   // --only PARTS (comma-separated: ladders, offsets, sweep, fraction) runs only those parts, so
   // that one part can be regenerated without the others; the default runs all four.
-  std::string only = "ladders,offsets,sweep,fraction";
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::string(argv[i]) == "--only" && i + 1 < argc) {
-      only = argv[++i];
-      continue;
-    }
-    args.push_back(argv[i]);
-  }
-  const auto part = [&](const std::string& name) { return ("," + only + ",").find("," + name + ",") != std::string::npos; };
-  const auto options = kerf_measure::parse_run_options(static_cast<int>(args.size()), args.data(),
+  const auto options = kerf_measure::parse_run_options(argc, argv,
                                                        "03_xfem_study [--quick] [--out DIR] [--only ladders,offsets,sweep,fraction]",
-                                                       "output/xfem_study");
+                                                       "output/xfem_study", {"ladders", "offsets", "sweep", "fraction"});
   if (!options) return 2;
   try {
     std::filesystem::create_directories(options->out);
     std::cout << "Kerf chapter 3 study" << (options->quick ? " (quick)" : "") << " on " << kerf_measure::cpu_model() << "\n";
     const auto start = xfem_study::clock::now();
     const xfem_study::Sizes sizes = xfem_study::study_sizes(options->quick);
-    if (part("ladders")) {
+    if (options->runs("ladders")) {
       std::ofstream ladder(options->out / "ladder.csv"), reference(options->out / "reference.csv");
       ladder << xfem_study::ladder_header;
       reference << "case,model,cells,dofs,seconds,iterations,converged,max_u_m,check_cells,check_rel_l2,ccx_matrix_max_rel,"
                    "ccx_static_max_rel,ccx_static_s,ccx_matrix_s,x1,z\n";
       xfem_study::run_ladders(sizes, KERF_CCX, options->out, xfem_study::ladder_place, ladder, &reference, false);
     }
-    if (part("offsets")) {
+    if (options->runs("offsets")) {
       std::ofstream spread(options->out / "ladder_offsets.csv");
       spread << xfem_study::ladder_header;
       for (const xfem_study::CutPlace& place : sizes.spread_places)
         xfem_study::run_ladders(sizes, KERF_CCX, options->out, place, spread, nullptr, true);
     }
-    if (part("sweep")) xfem_study::run_front_sweep(sizes, options->out);
-    if (part("fraction")) {
+    if (options->runs("sweep")) xfem_study::run_front_sweep(sizes, options->out);
+    if (options->runs("fraction")) {
       std::ofstream csv(options->out / "fraction.csv"), uncut(options->out / "fraction_uncut.csv");
       csv << "front,cells,offset,rule,min_fraction,max_fraction,cut_tets,snapped_nodes,enriched_nodes,dofs,lambda_min,lambda_max,"
              "condition,jacobi_condition,rel_l2_difference,solve_ok\n";

@@ -21,7 +21,7 @@ const char* full_scene = R"({
   "cuts": [{"rectangle": {"origin": [0, 0, 0.1], "edge1": [0.015, 0, 0], "edge2": [0, 0.06, 0]}}, {"surface": "cut.obj"}],
   "time": {"integrator": "newmark", "dt": 0.01, "steps": 100, "rayleigh": [0.1, 0.01]},
   "output": {"every": 5},
-  "solver": {"type": "cg-ichol", "tolerance": 1e-8, "max_iterations": 500}
+  "solver": {"type": "cg-ichol", "ordering": "amd", "tolerance": 1e-8, "max_iterations": 500}
 })";
 
 // Parses `text` and returns the error message, or "" if it parsed.
@@ -61,6 +61,7 @@ TEST_CASE("a full scene is read field by field") {
   CHECK(scene.time.beta == 0.25);
   CHECK(scene.output_every == 5);
   CHECK(scene.solver.type == "cg-ichol");
+  CHECK(scene.solver.ordering == "amd");
 }
 
 TEST_CASE("defaults: the paper's material, linear, static, CHOLMOD") {
@@ -72,6 +73,7 @@ TEST_CASE("defaults: the paper's material, linear, static, CHOLMOD") {
   CHECK(scene.model == "linear");
   CHECK(scene.time.integrator == "static");
   CHECK(scene.solver.type == "cholmod");
+  CHECK(scene.solver.ordering == "nested-dissection");
   CHECK(scene.mesh.order == 1);
 }
 
@@ -106,6 +108,7 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "time": {"integrator": "static", "dt": 0.1}})", "time.dt"},
       {"{" + m + R"(, "output": {"every": 0}})", "output.every"},
       {"{" + m + R"(, "solver": {"type": "umfpack"}})", "solver.type"},
+      {"{" + m + R"(, "solver": {"ordering": "colamd"}})", "solver.ordering"},
       {"[1, 2, 3]", "(top level)"},
   };
   for (const auto& c : cases) {

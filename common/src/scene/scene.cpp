@@ -332,13 +332,18 @@ SolverSettings read_solver(const ObjectReader& r) {
   SolverSettings solver;
   if (!r.has("solver")) return solver;
   ObjectReader s(r.at("solver"), "solver", r.file());
-  s.allow_only({"type", "tolerance", "max_iterations"});
+  s.allow_only({"type", "ordering", "tolerance", "max_iterations"});
   solver.type = s.text("type", "cholmod");
+  solver.ordering = s.text("ordering", solver.ordering);
   solver.tolerance = s.number("tolerance", solver.tolerance);
   solver.max_iterations = s.integer("max_iterations", solver.max_iterations);
   const auto& type = solver.type;
   if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol")
     s.fail("solver.type", "expected \"cholmod\", \"ldlt\", \"cg-jacobi\" or \"cg-ichol\", got \"" + type + "\"");
+  const auto& ordering = solver.ordering;
+  if (ordering != "nested-dissection" && ordering != "metis" && ordering != "amd" && ordering != "cholmod")
+    s.fail("solver.ordering",
+           "expected \"nested-dissection\", \"metis\", \"amd\" or \"cholmod\", got \"" + ordering + "\"");
   if (!(solver.tolerance > 0.0 && solver.tolerance < 1.0)) s.fail("solver.tolerance", "expected a number in (0, 1)");
   if (solver.max_iterations < 1) s.fail("solver.max_iterations", "expected a positive integer");
   return solver;

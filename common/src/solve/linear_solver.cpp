@@ -1,6 +1,8 @@
 #include "kerf/solve/linear_solver.hpp"
 
-#include <Eigen/CholmodSupport>
+#include "kerf/solve/cholmod_solver.hpp"
+#include "solve/solver_checks.hpp"
+
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <stdexcept>
@@ -9,56 +11,28 @@ namespace kerf {
 
 namespace {
 
-const char* not_positive_definite =
-    "the stiffness matrix is not positive definite: is the body held by enough Dirichlet conditions?";
+using solver_checks::not_positive_definite;
+using solver_checks::require_finite_right_hand_side;
 
-// CHOLMOD prints a warning to stderr when a matrix is not positive definite; the callers here
-// handle that case themselves (an error message, or a fallback tangent), and every other
-// failure also surfaces through info(), so CHOLMOD prints nothing.
-template <class Decomposition>
-void silence_warnings(Decomposition&) {}
-template <class Matrix, int UpLo>
-void silence_warnings(Eigen::CholmodSupernodalLLT<Matrix, UpLo>& decomposition) {
-  decomposition.cholmod().print = 0;
-}
-
-// Whether a successful factorisation shows a positive definite matrix. A Cholesky
-// factorisation (CHOLMOD) exists only for one, so success says it all; an LDL^T exists for
-// indefinite matrices too, and then some pivot D_ii is negative.
-template <class Decomposition>
-bool pivots_positive(const Decomposition&) {
-  return true;
-}
-template <class Matrix, int UpLo, class Ordering>
-bool pivots_positive(const Eigen::SimplicialLDLT<Matrix, UpLo, Ordering>& decomposition) {
-  return decomposition.vectorD().size() == 0 || decomposition.vectorD().minCoeff() > 0.0;
-}
-
-void require_finite_right_hand_side(const Eigen::VectorXd& b) {
-  if (!b.allFinite())
-    throw std::invalid_argument("the right-hand side is not finite: an infinite or NaN load or prescribed displacement");
-}
-
-/// A direct Cholesky-type solver wrapping an Eigen decomposition (CHOLMOD or SimplicialLDLT).
-template <class Decomposition>
-class DirectSolver final : public LinearSolver {
+/// Eigen's SimplicialLDLT, with its pivots checked: an LDL^T exists for indefinite matrices
+/// too, and then some pivot D_ii is negative (Eigen itself stops only on an exactly zero one).
+class LdltSolver final : public LinearSolver {
 public:
-  explicit DirectSolver(std::string name) : name_(std::move(name)) { silence_warnings(decomposition_); }
-  std::string name() const override { return name_; }
-  void analyze_pattern(const Eigen::SparseMatrix<double>& A) override { decomposition_.analyzePattern(A); }
+  std::string name() const override { return "ldlt"; }
+  void analyze_pattern(const Eigen::SparseMatrix<double>& A) override { ldlt_.analyzePattern(A); }
   void factorize(const Eigen::SparseMatrix<double>& A) override {
-    decomposition_.factorize(A);
-    if (decomposition_.info() != Eigen::Success || !pivots_positive(decomposition_)) throw NotPositiveDefinite(not_positive_definite);
+    ldlt_.factorize(A);
+    const bool pivots_positive = ldlt_.vectorD().size() == 0 || ldlt_.vectorD().minCoeff() > 0.0;
+    if (ldlt_.info() != Eigen::Success || !pivots_positive) throw NotPositiveDefinite(not_positive_definite);
   }
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     require_finite_right_hand_side(b);
-    x = decomposition_.solve(b);
-    if (decomposition_.info() != Eigen::Success || !x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
+    x = ldlt_.solve(b);
+    if (ldlt_.info() != Eigen::Success || !x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
   }
 
 private:
-  std::string name_;
-  Decomposition decomposition_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
 };
 
 /// Preconditioned conjugate gradients; the preconditioner is built in factorize().
@@ -102,11 +76,8 @@ private:
 } // namespace
 
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& settings) {
-  using Matrix = Eigen::SparseMatrix<double>;
-  if (settings.type == "cholmod")
-    return std::make_unique<DirectSolver<Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower>>>("cholmod");
-  if (settings.type == "ldlt")
-    return std::make_unique<DirectSolver<Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>>>>("ldlt");
+  if (settings.type == "cholmod") return std::make_unique<CholmodSolver>(settings.ordering);
+  if (settings.type == "ldlt") return std::make_unique<LdltSolver>();
   if (settings.type == "cg-jacobi")
     return std::make_unique<ConjugateGradientSolver<Eigen::DiagonalPreconditioner<double>>>("cg-jacobi", settings);
   if (settings.type == "cg-ichol")

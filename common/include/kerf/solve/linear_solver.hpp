@@ -26,6 +26,9 @@ struct SolverSettings {
   std::string type = "cholmod";
   double tolerance = 1e-10;  ///< CG: stop when |b - A x| <= tolerance |b|
   int max_iterations = 10000; ///< CG: give up (with an error) after this many iterations
+  /// CHOLMOD's fill-reducing ordering: "nested-dissection" (the default), "metis", "amd" or
+  /// "cholmod" (CHOLMOD's own choice); see kerf::CholmodSolver.
+  std::string ordering = "nested-dissection";
 };
 
 /// A solver for A x = b with A sparse, symmetric positive definite, both triangles stored.

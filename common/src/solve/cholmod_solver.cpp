@@ -1,0 +1,205 @@
+#include "kerf/solve/cholmod_solver.hpp"
+
+#include "kerf/solve/unknown_blocks.hpp"
+#include "solve/solver_checks.hpp"
+
+#include <cholmod.h>
+#include <omp.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace kerf {
+
+namespace {
+
+using solver_checks::not_positive_definite;
+
+// CHOLMOD's supernodal factorisation (SuiteSparse 5, as Debian 12 ships it) runs some loops in
+// OpenMP regions that ask for a fixed number of threads, 4, chosen when CHOLMOD was compiled,
+// whatever OMP_NUM_THREADS says. On a machine with fewer cores those threads take turns on
+// them, and each turn costs a context switch: on 2 cores we measured factorisations 1.5 to 4
+// times slower than with one thread. With dynamic adjustment on, OpenMP gives a region no
+// more threads than there are idle cores, nor more than OMP_NUM_THREADS. This guard turns it
+// on for one call and restores the caller's setting afterwards.
+class OpenMpThreadsAtMostCores {
+public:
+  OpenMpThreadsAtMostCores() : was_dynamic_(omp_get_dynamic()) { omp_set_dynamic(1); }
+  ~OpenMpThreadsAtMostCores() { omp_set_dynamic(was_dynamic_); }
+  OpenMpThreadsAtMostCores(const OpenMpThreadsAtMostCores&) = delete;
+  OpenMpThreadsAtMostCores& operator=(const OpenMpThreadsAtMostCores&) = delete;
+
+private:
+  int was_dynamic_;
+};
+
+// CHOLMOD's view of an Eigen matrix with both triangles stored, compressed: no copy. stype = -1
+// tells CHOLMOD to read the lower triangle only and take A as symmetric.
+cholmod_sparse view_lower_triangle(const Eigen::SparseMatrix<double>& A) {
+  cholmod_sparse view{};
+  view.nrow = static_cast<std::size_t>(A.rows());
+  view.ncol = static_cast<std::size_t>(A.cols());
+  view.nzmax = static_cast<std::size_t>(A.nonZeros());
+  view.p = const_cast<int*>(A.outerIndexPtr()); // CHOLMOD reads, never writes, a matrix it factorises
+  view.i = const_cast<int*>(A.innerIndexPtr());
+  view.x = const_cast<double*>(A.valuePtr());
+  view.stype = -1;
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+  return view;
+}
+
+} // namespace
+
+struct CholmodSolver::Cholmod {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  cholmod_dense* solution = nullptr; // cholmod_solve2's output and workspace, reused by every solve
+  cholmod_dense* workspace_y = nullptr;
+  cholmod_dense* workspace_e = nullptr;
+  bool factorised = false; // whether `factor` holds the numeric factor of the last factorize
+
+  Cholmod() {
+    cholmod_start(&common);
+    common.print = 0; // a failed factorisation is reported by an exception, not on stderr
+    common.supernodal = CHOLMOD_SUPERNODAL;
+  }
+  ~Cholmod() {
+    free_factor();
+    cholmod_free_dense(&solution, &common);
+    cholmod_free_dense(&workspace_y, &common);
+    cholmod_free_dense(&workspace_e, &common);
+    cholmod_finish(&common);
+  }
+  Cholmod(const Cholmod&) = delete;
+  Cholmod& operator=(const Cholmod&) = delete;
+  void free_factor() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    factorised = false;
+  }
+};
+
+CholmodSolver::CholmodSolver(const std::string& ordering) : cholmod_(std::make_unique<Cholmod>()), ordering_(ordering) {
+  if (ordering != "nested-dissection" && ordering != "metis" && ordering != "amd" && ordering != "cholmod")
+    throw std::invalid_argument("unknown ordering '" + ordering + "' (expected nested-dissection, metis, amd or cholmod)");
+}
+
+CholmodSolver::~CholmodSolver() = default;
+
+void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& A_in) {
+  if (A_in.rows() != A_in.cols()) throw std::invalid_argument("CholmodSolver: the matrix is not square");
+  Eigen::SparseMatrix<double> compressed;
+  const Eigen::SparseMatrix<double>& A = A_in.isCompressed() ? A_in : (compressed = A_in);
+  cholmod_common& c = cholmod_->common;
+  cholmod_->free_factor();
+  cholmod_sparse A_view = view_lower_triangle(A);
+  const int n = static_cast<int>(A.rows());
+
+  if (ordering_ == "cholmod") {
+    c.nmethods = 0; // CHOLMOD's default strategy
+    cholmod_->factor = cholmod_analyze(&A_view, &c);
+    statistics_.ordered_vertices = n;
+  } else {
+    // The block graph: vertex k is block k of unknown_blocks, adjacent to the blocks of the
+    // rows of its first column. Stored as a full symmetric pattern; stype = 1 has CHOLMOD
+    // read its upper triangle.
+    const std::vector<int> starts = unknown_blocks(A);
+    const int blocks = static_cast<int>(starts.size()) - 1;
+    std::vector<int> block_of(static_cast<std::size_t>(n));
+    for (int k = 0; k < blocks; ++k)
+      for (int j = starts[k]; j < starts[k + 1]; ++j) block_of[j] = k;
+    std::vector<int> column_start{0}, rows;
+    for (int k = 0; k < blocks; ++k) {
+      const int j = starts[k];
+      for (int q = A.outerIndexPtr()[j]; q < A.outerIndexPtr()[j + 1]; ++q) {
+        const int block = block_of[A.innerIndexPtr()[q]];
+        if (rows.size() == static_cast<std::size_t>(column_start.back()) || rows.back() != block) rows.push_back(block);
+      }
+      column_start.push_back(static_cast<int>(rows.size()));
+    }
+    cholmod_sparse graph{};
+    graph.nrow = graph.ncol = static_cast<std::size_t>(blocks);
+    graph.nzmax = rows.size();
+    graph.p = column_start.data();
+    graph.i = rows.data();
+    graph.stype = 1;
+    graph.itype = CHOLMOD_INT;
+    graph.xtype = CHOLMOD_PATTERN;
+    graph.dtype = CHOLMOD_DOUBLE;
+    graph.sorted = 1;
+    graph.packed = 1;
+
+    std::vector<int> block_order(static_cast<std::size_t>(blocks));
+    bool ordered = false;
+    if (ordering_ == "nested-dissection") {
+      std::vector<int> component_parent(static_cast<std::size_t>(blocks)), component_of(static_cast<std::size_t>(blocks));
+      ordered = cholmod_nested_dissection(&graph, nullptr, 0, block_order.data(), component_parent.data(),
+                                          component_of.data(), &c) >= 0;
+    } else if (ordering_ == "metis") {
+      ordered = cholmod_metis(&graph, nullptr, 0, 1, block_order.data(), &c) != 0;
+    } else {
+      ordered = cholmod_amd(&graph, nullptr, 0, block_order.data(), &c) != 0;
+    }
+    if (!ordered) throw std::runtime_error("CHOLMOD could not order the matrix (status " + std::to_string(c.status) + ")");
+
+    // Each block's unknowns, in their order, where the block falls in the block order.
+    std::vector<int> permutation;
+    permutation.reserve(static_cast<std::size_t>(n));
+    for (int k : block_order)
+      for (int j = starts[k]; j < starts[k + 1]; ++j) permutation.push_back(j);
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    c.postorder = 1; // CHOLMOD reorders the elimination tree for bigger supernodes; the fill stays
+    cholmod_->factor = cholmod_analyze_p(&A_view, permutation.data(), nullptr, 0, &c);
+    statistics_.ordered_vertices = blocks;
+  }
+  if (!cholmod_->factor) throw std::runtime_error("CHOLMOD's analysis failed (status " + std::to_string(c.status) + ")");
+  statistics_.factor_entries = c.lnz;
+  statistics_.factorisation_flops = c.fl;
+}
+
+void CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A_in) {
+  if (!cholmod_->factor) throw std::logic_error("CholmodSolver::factorize before analyze_pattern");
+  if (static_cast<std::size_t>(A_in.rows()) != cholmod_->factor->n || A_in.rows() != A_in.cols())
+    throw std::invalid_argument("CholmodSolver::factorize: the matrix does not have the analysed size");
+  Eigen::SparseMatrix<double> compressed;
+  const Eigen::SparseMatrix<double>& A = A_in.isCompressed() ? A_in : (compressed = A_in);
+  cholmod_sparse A_view = view_lower_triangle(A);
+  cholmod_common& c = cholmod_->common;
+  cholmod_->factorised = false;
+  {
+    const OpenMpThreadsAtMostCores threads;
+    cholmod_factorize(&A_view, cholmod_->factor, &c);
+  }
+  // A non-positive pivot stops the factorisation at column `minor`: the matrix is not positive
+  // definite. Any other failure (out of memory) is an ordinary error.
+  if (c.status == CHOLMOD_NOT_POSDEF || cholmod_->factor->minor < cholmod_->factor->n)
+    throw NotPositiveDefinite(not_positive_definite);
+  if (c.status < CHOLMOD_OK) throw std::runtime_error("CHOLMOD's factorisation failed (status " + std::to_string(c.status) + ")");
+  cholmod_->factorised = true;
+}
+
+void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (!cholmod_->factorised)
+    throw std::logic_error("CholmodSolver::solve before factorize");
+  if (static_cast<std::size_t>(b.size()) != cholmod_->factor->n)
+    throw std::invalid_argument("CholmodSolver::solve: the right-hand side does not have the matrix's size");
+  solver_checks::require_finite_right_hand_side(b);
+  cholmod_dense b_view{};
+  b_view.nrow = b_view.d = b_view.nzmax = static_cast<std::size_t>(b.size());
+  b_view.ncol = 1;
+  b_view.x = const_cast<double*>(b.data()); // read only
+  b_view.xtype = CHOLMOD_REAL;
+  b_view.dtype = CHOLMOD_DOUBLE;
+  cholmod_common& c = cholmod_->common;
+  if (!cholmod_solve2(CHOLMOD_A, cholmod_->factor, &b_view, nullptr, &cholmod_->solution, nullptr, &cholmod_->workspace_y,
+                      &cholmod_->workspace_e, &c))
+    throw std::runtime_error("CHOLMOD's solve failed (status " + std::to_string(c.status) + ")");
+  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(cholmod_->solution->x), b.size());
+  if (!x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
+}
+
+} // namespace kerf
