@@ -253,3 +253,58 @@ TEST_CASE("a corotational scene with a rotated support and quasi-static settings
   rejects(R"("dirichlet": [{)" + support + R"(, "rotation": {"axis": [0, 1, 0]}}])", "dirichlet[0].rotation.degrees");
   rejects(R"("model": "hyperelastic")", "model");
 }
+
+/// The Tet4 cantilever under 0.5 N on its top face, in 10 load steps: a gentle load path.
+struct GentleCantilever {
+  kerf::TetMesh mesh = beam_mesh(1);
+  kerf::DofMap dofs = kerf::make_dof_map(mesh.num_nodes(), {{kerf::nodes_in_region(mesh, end_face(0.0)), {0, 0, 0}}});
+  Eigen::VectorXd f = tip_traction();
+  kerf::CorotationalModel model{mesh, kerf::LinearMaterial{300e3, 0.35, 1070}};
+
+  Eigen::VectorXd tip_traction() const {
+    Eigen::VectorXd load = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+    kerf::add_uniform_traction(mesh, kerf::boundary_faces(mesh), kerf::node_mask(mesh, end_face(beam_length)), {0.5, 0.0, 0.0},
+                               load);
+    return load;
+  }
+  kerf::QuasiStaticResult solve(const kerf::QuasiStaticSettings& settings) const {
+    return kerf::solve_quasi_static(model, dofs, f, settings);
+  }
+};
+
+TEST_CASE("the secant predictor saves Newton iterations on a gently loaded cantilever, to the same equilibrium") {
+  const GentleCantilever cantilever;
+  kerf::QuasiStaticSettings settings;
+  settings.load_steps = 10;
+  int iterations[2] = {0, 0};
+  Eigen::VectorXd u[2];
+  for (const int p : {0, 1}) {
+    settings.predictor = p == 0 ? kerf::LoadStepPredictor::previous_state : kerf::LoadStepPredictor::secant;
+    const kerf::QuasiStaticResult result = cantilever.solve(settings);
+    REQUIRE(result.converged);
+    iterations[p] = result.total_iterations;
+    u[p] = result.u;
+    CHECK(result.factorisations == result.total_iterations); // CHOLMOD: one factorisation per solve
+  }
+  MESSAGE("Newton iterations, 10 load steps: " << iterations[0] << " from the last equilibrium, " << iterations[1]
+                                                << " with the secant predictor");
+  // Both stop at a relative residual of 1e-9: the same equilibrium to ~1e-8.
+  CHECK(max_nodal_norm(u[0] - u[1]) < 1e-7 * max_nodal_norm(u[0]));
+  CHECK(iterations[1] < iterations[0]);
+}
+
+TEST_CASE("cg-cholmod reaches the same equilibrium as CHOLMOD with fewer factorisations") {
+  const GentleCantilever cantilever;
+  kerf::QuasiStaticSettings settings;
+  settings.load_steps = 10;
+  const kerf::QuasiStaticResult direct = cantilever.solve(settings);
+  settings.solver.type = "cg-cholmod";
+  settings.solver.tolerance = 1e-8;
+  const kerf::QuasiStaticResult reused = cantilever.solve(settings);
+  REQUIRE(direct.converged);
+  REQUIRE(reused.converged);
+  MESSAGE("cg-cholmod: " << reused.total_iterations << " Newton iterations, " << reused.factorisations << " factorisations, "
+                         << reused.linear_iterations << " CG iterations; CHOLMOD: " << direct.total_iterations << " iterations");
+  CHECK(max_nodal_norm(direct.u - reused.u) < 1e-7 * max_nodal_norm(direct.u));
+  CHECK(reused.factorisations < reused.total_iterations);
+}

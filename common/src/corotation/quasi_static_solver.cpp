@@ -44,6 +44,7 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
 
   QuasiStaticResult result;
   result.u = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
+  Eigen::VectorXd previous_equilibrium = result.u;
   const Eigen::VectorXd no_increment = Eigen::VectorXd::Zero(result.u.size());
   for (int step = 1; step <= settings.load_steps; ++step) {
     // The step's targets: the load lambda f_ext and the prescribed u_c(lambda). The prescribed
@@ -55,6 +56,18 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
       if (dofs.free_index[d] >= 0) du_c[static_cast<Eigen::Index>(d)] = 0.0;
     double scale = (lambda * f_ext).norm();
     bool step_converged = false;
+    // The secant predictor moves the free DOFs on by the last step's change and the prescribed
+    // ones onto their path at once (so that no element is strained by free nodes that have
+    // moved on beside a support that has not); nothing is then left to lift.
+    const Eigen::VectorXd last_change = result.u - previous_equilibrium;
+    previous_equilibrium = result.u;
+    if (settings.predictor == LoadStepPredictor::secant && step > 1) {
+      for (std::size_t d = 0; d < dofs.free_index.size(); ++d) {
+        const auto i = static_cast<Eigen::Index>(d);
+        result.u[i] += dofs.free_index[d] >= 0 ? last_change[i] : du_c[i];
+      }
+      du_c.setZero();
+    }
 
     for (int iteration = 0; iteration <= settings.max_iterations; ++iteration) {
       const bool first = iteration == 0;
@@ -100,6 +113,7 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
       }
       result.history.push_back(record);
       ++result.total_iterations;
+      result.linear_iterations += solver->iterations();
 
       // Free DOFs move by du_f; prescribed ones by du_c (first iteration) or not at all.
       for (std::size_t d = 0; d < dofs.free_index.size(); ++d) {
@@ -110,6 +124,7 @@ QuasiStaticResult solve_quasi_static(const QuasiStaticModel& model, const DofMap
     }
     result.converged = result.converged && step_converged;
   }
+  result.factorisations = solver->factorisations();
   return result;
 }
 

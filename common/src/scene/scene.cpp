@@ -311,17 +311,20 @@ QuasiStaticSpec read_quasi_static(const ObjectReader& r) {
   QuasiStaticSpec spec;
   if (!r.has("quasi_static")) return spec;
   ObjectReader q(r.at("quasi_static"), "quasi_static", r.file());
-  q.allow_only({"load_steps", "max_iterations", "tolerance", "tangent", "rotation"});
+  q.allow_only({"load_steps", "max_iterations", "tolerance", "tangent", "rotation", "predictor"});
   spec.load_steps = q.integer("load_steps", spec.load_steps);
   spec.max_iterations = q.integer("max_iterations", spec.max_iterations);
   spec.tolerance = q.number("tolerance", spec.tolerance);
   spec.tangent = q.text("tangent", spec.tangent);
   spec.rotation = q.text("rotation", spec.rotation);
+  spec.predictor = q.text("predictor", spec.predictor);
   if (spec.load_steps < 1 || spec.load_steps > 100000) q.fail("quasi_static.load_steps", "expected an integer in [1, 100000]");
   if (spec.max_iterations < 1) q.fail("quasi_static.max_iterations", "expected a positive integer");
   if (!(spec.tolerance > 0.0 && spec.tolerance < 1.0)) q.fail("quasi_static.tolerance", "expected a number in (0, 1)");
   if (spec.tangent != "consistent" && spec.tangent != "warped")
     q.fail("quasi_static.tangent", "expected \"consistent\" or \"warped\", got \"" + spec.tangent + "\"");
+  if (spec.predictor != "secant" && spec.predictor != "previous")
+    q.fail("quasi_static.predictor", "expected \"secant\" or \"previous\", got \"" + spec.predictor + "\"");
   if (spec.rotation != "automatic" && spec.rotation != "higham" && spec.rotation != "svd")
     q.fail("quasi_static.rotation", "expected \"automatic\", \"higham\" or \"svd\", got \"" + spec.rotation + "\"");
   return spec;
@@ -332,20 +335,23 @@ SolverSettings read_solver(const ObjectReader& r) {
   SolverSettings solver;
   if (!r.has("solver")) return solver;
   ObjectReader s(r.at("solver"), "solver", r.file());
-  s.allow_only({"type", "ordering", "tolerance", "max_iterations"});
+  s.allow_only({"type", "ordering", "tolerance", "max_iterations", "refresh_iterations"});
   solver.type = s.text("type", "cholmod");
   solver.ordering = s.text("ordering", solver.ordering);
   solver.tolerance = s.number("tolerance", solver.tolerance);
   solver.max_iterations = s.integer("max_iterations", solver.max_iterations);
+  solver.refresh_iterations = s.integer("refresh_iterations", solver.refresh_iterations);
   const auto& type = solver.type;
-  if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol")
-    s.fail("solver.type", "expected \"cholmod\", \"ldlt\", \"cg-jacobi\" or \"cg-ichol\", got \"" + type + "\"");
+  if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol" && type != "cg-cholmod")
+    s.fail("solver.type",
+           "expected \"cholmod\", \"ldlt\", \"cg-jacobi\", \"cg-ichol\" or \"cg-cholmod\", got \"" + type + "\"");
   const auto& ordering = solver.ordering;
   if (ordering != "nested-dissection" && ordering != "metis" && ordering != "amd" && ordering != "cholmod")
     s.fail("solver.ordering",
            "expected \"nested-dissection\", \"metis\", \"amd\" or \"cholmod\", got \"" + ordering + "\"");
   if (!(solver.tolerance > 0.0 && solver.tolerance < 1.0)) s.fail("solver.tolerance", "expected a number in (0, 1)");
   if (solver.max_iterations < 1) s.fail("solver.max_iterations", "expected a positive integer");
+  if (solver.refresh_iterations < 1) s.fail("solver.refresh_iterations", "expected a positive integer");
   return solver;
 }
 

@@ -11,6 +11,7 @@ QuasiStaticSettings scene_quasi_static_settings(const Scene& scene) {
   settings.rotation = scene.quasi_static.rotation == "higham" ? RotationMethod::higham
                       : scene.quasi_static.rotation == "svd" ? RotationMethod::svd
                                                              : RotationMethod::automatic;
+  settings.predictor = scene.quasi_static.predictor == "previous" ? LoadStepPredictor::previous_state : LoadStepPredictor::secant;
   settings.solver = scene.solver;
   return settings;
 }

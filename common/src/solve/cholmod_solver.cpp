@@ -180,6 +180,7 @@ void CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A_in) {
     throw NotPositiveDefinite(not_positive_definite);
   if (c.status < CHOLMOD_OK) throw std::runtime_error("CHOLMOD's factorisation failed (status " + std::to_string(c.status) + ")");
   cholmod_->factorised = true;
+  ++factorisations_;
 }
 
 void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

@@ -1,6 +1,7 @@
 #include "kerf/solve/linear_solver.hpp"
 
 #include "kerf/solve/cholmod_solver.hpp"
+#include "kerf/solve/reused_factorisation_cg.hpp"
 #include "solve/solver_checks.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -21,6 +22,7 @@ public:
   std::string name() const override { return "ldlt"; }
   void analyze_pattern(const Eigen::SparseMatrix<double>& A) override { ldlt_.analyzePattern(A); }
   void factorize(const Eigen::SparseMatrix<double>& A) override {
+    ++factorisations_;
     ldlt_.factorize(A);
     const bool pivots_positive = ldlt_.vectorD().size() == 0 || ldlt_.vectorD().minCoeff() > 0.0;
     if (ldlt_.info() != Eigen::Success || !pivots_positive) throw NotPositiveDefinite(not_positive_definite);
@@ -31,8 +33,11 @@ public:
     if (ldlt_.info() != Eigen::Success || !x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
   }
 
+  int factorisations() const override { return factorisations_; }
+
 private:
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  int factorisations_ = 0;
 };
 
 /// Preconditioned conjugate gradients; the preconditioner is built in factorize().
@@ -49,6 +54,7 @@ public:
     // A positive definite matrix has a positive diagonal (A_ii = e_i^T A e_i); Jacobi would
     // divide by the diagonal and the incomplete Cholesky fail on it.
     if (A.rows() > 0 && !(A.diagonal().minCoeff() > 0.0)) throw NotPositiveDefinite(not_positive_definite);
+    ++factorisations_;
     cg_.factorize(A);
     if (cg_.info() != Eigen::Success) throw NotPositiveDefinite(not_positive_definite);
   }
@@ -67,9 +73,11 @@ public:
       throw NotPositiveDefinite(not_positive_definite);
   }
   int iterations() const override { return static_cast<int>(cg_.iterations()); }
+  int factorisations() const override { return factorisations_; }
 
 private:
   std::string name_;
+  int factorisations_ = 0;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Preconditioner> cg_;
 };
 
@@ -77,13 +85,15 @@ private:
 
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& settings) {
   if (settings.type == "cholmod") return std::make_unique<CholmodSolver>(settings.ordering);
+  if (settings.type == "cg-cholmod") return std::make_unique<ReusedFactorisationCg>(settings.tolerance, settings.refresh_iterations,
+                                                                                         settings.ordering);
   if (settings.type == "ldlt") return std::make_unique<LdltSolver>();
   if (settings.type == "cg-jacobi")
     return std::make_unique<ConjugateGradientSolver<Eigen::DiagonalPreconditioner<double>>>("cg-jacobi", settings);
   if (settings.type == "cg-ichol")
     return std::make_unique<ConjugateGradientSolver<Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>>>(
         "cg-ichol", settings);
-  throw std::invalid_argument("unknown solver '" + settings.type + "' (expected cholmod, ldlt, cg-jacobi or cg-ichol)");
+  throw std::invalid_argument("unknown solver '" + settings.type + "' (expected cholmod, ldlt, cg-jacobi, cg-ichol or cg-cholmod)");
 }
 
 } // namespace kerf

@@ -45,6 +45,7 @@ struct QuasiStaticSpec {
   double tolerance = 1e-9;
   std::string tangent = "consistent"; ///< "consistent" or "warped"
   std::string rotation = "automatic"; ///< "automatic", "higham" or "svd"
+  std::string predictor = "previous"; ///< "previous" or "secant"
 };
 
 /// A total force spread uniformly by area over the boundary faces inside region.

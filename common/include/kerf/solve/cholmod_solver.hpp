@@ -41,6 +41,7 @@ public:
   void analyze_pattern(const Eigen::SparseMatrix<double>& A) override;
   void factorize(const Eigen::SparseMatrix<double>& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
+  int factorisations() const override { return factorisations_; }
 
   /// The counts of the last analyze_pattern.
   const CholmodStatistics& statistics() const { return statistics_; }
@@ -50,6 +51,7 @@ private:
   std::unique_ptr<Cholmod> cholmod_;
   std::string ordering_;
   CholmodStatistics statistics_;
+  int factorisations_ = 0;
 };
 
 } // namespace kerf

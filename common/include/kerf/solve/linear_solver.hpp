@@ -22,10 +22,12 @@ public:
 struct SolverSettings {
   /// "cholmod" (supernodal Cholesky, the default), "ldlt" (Eigen's SimplicialLDLT, a teaching
   /// fallback), "cg-jacobi" or "cg-ichol" (conjugate gradients with a Jacobi or an incomplete
-  /// Cholesky preconditioner).
+  /// Cholesky preconditioner), "cg-cholmod" (conjugate gradients preconditioned by the CHOLMOD
+  /// factor of an earlier matrix, kerf::ReusedFactorisationCg).
   std::string type = "cholmod";
   double tolerance = 1e-10;  ///< CG: stop when |b - A x| <= tolerance |b|
-  int max_iterations = 10000; ///< CG: give up (with an error) after this many iterations
+  int max_iterations = 10000; ///< cg-jacobi, cg-ichol: give up (with an error) after this many iterations
+  int refresh_iterations = 10; ///< cg-cholmod: refactorise after a solve that needs more iterations
   /// CHOLMOD's fill-reducing ordering: "nested-dissection" (the default), "metis", "amd" or
   /// "cholmod" (CHOLMOD's own choice); see kerf::CholmodSolver.
   std::string ordering = "nested-dissection";
@@ -58,6 +60,9 @@ public:
   virtual void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   /// Iterations of the last solve (1 for a direct solver).
   virtual int iterations() const { return 1; }
+  /// Numeric factorisations (or preconditioner set-ups) done so far: one per factorize() call,
+  /// except for "cg-cholmod", which factorises only when its old factor stops paying.
+  virtual int factorisations() const = 0;
 };
 
 /// Makes the solver named in `settings` (std::invalid_argument for an unknown name).
