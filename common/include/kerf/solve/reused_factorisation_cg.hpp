@@ -17,7 +17,7 @@ namespace kerf {
 /// With M = L L^T, PCG converges in a number of iterations set by the spread of the eigenvalues
 /// of M^{-1} A: one iteration when M = A, a few while A has moved little. An iteration costs
 /// a product with A and two triangular solves with L, a fraction of a factorisation: on chapter
-/// 2's benchmark beam (6534 unknowns) one factorisation costs as much as about 11 iterations.
+/// 2's benchmark beam (6534 unknowns) one factorisation costs about as much as a dozen iterations.
 /// The rule, in iterations so that it does not depend on the machine's load: a solve that needs
 /// more than `refresh_iterations` makes the next factorize() refactorise; a solve that has not
 /// converged after twice as many refactorises at once and finishes with the new factor.
