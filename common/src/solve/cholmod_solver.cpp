@@ -52,6 +52,68 @@ cholmod_sparse view_lower_triangle(const Eigen::SparseMatrix<double>& A) {
   return view;
 }
 
+// The graph of the blocks of unknown_blocks: vertex k is block k, adjacent to the blocks of the
+// rows of its first column (all its columns have the same rows). Stored as a full symmetric
+// pattern in compressed columns.
+struct BlockGraph {
+  std::vector<int> column_start{0}, rows;
+
+  // CHOLMOD's view of it; stype = 1 has CHOLMOD read its upper triangle and take it as symmetric.
+  cholmod_sparse view() {
+    cholmod_sparse graph{};
+    graph.nrow = graph.ncol = column_start.size() - 1;
+    graph.nzmax = rows.size();
+    graph.p = column_start.data();
+    graph.i = rows.data();
+    graph.stype = 1;
+    graph.itype = CHOLMOD_INT;
+    graph.xtype = CHOLMOD_PATTERN;
+    graph.dtype = CHOLMOD_DOUBLE;
+    graph.sorted = 1;
+    graph.packed = 1;
+    return graph;
+  }
+};
+
+BlockGraph make_block_graph(const Eigen::SparseMatrix<double>& A, const std::vector<int>& starts) {
+  const int blocks = static_cast<int>(starts.size()) - 1;
+  std::vector<int> block_of(static_cast<std::size_t>(A.rows()));
+  for (int k = 0; k < blocks; ++k)
+    for (int j = starts[k]; j < starts[k + 1]; ++j) block_of[j] = k;
+  BlockGraph graph;
+  for (int k = 0; k < blocks; ++k) {
+    // The rows of a column are sorted and the blocks are runs of consecutive indices, so the
+    // rows' blocks come in order too: a block is new when it differs from the last one kept.
+    const int j = starts[k];
+    for (int q = A.outerIndexPtr()[j]; q < A.outerIndexPtr()[j + 1]; ++q) {
+      const int block = block_of[A.innerIndexPtr()[q]];
+      const bool first_in_column = graph.rows.size() == static_cast<std::size_t>(graph.column_start.back());
+      if (first_in_column || graph.rows.back() != block) graph.rows.push_back(block);
+    }
+    graph.column_start.push_back(static_cast<int>(graph.rows.size()));
+  }
+  return graph;
+}
+
+// The fill-reducing order of the block graph, with the named method: block_order[i] is the
+// block eliminated i-th.
+std::vector<int> order_block_graph(BlockGraph& graph, const std::string& ordering, cholmod_common& c) {
+  cholmod_sparse view = graph.view();
+  const std::size_t blocks = view.ncol;
+  std::vector<int> block_order(blocks);
+  bool ordered = false;
+  if (ordering == "nested-dissection") {
+    std::vector<int> component_parent(blocks), component_of(blocks);
+    ordered = cholmod_nested_dissection(&view, nullptr, 0, block_order.data(), component_parent.data(), component_of.data(), &c) >= 0;
+  } else if (ordering == "metis") {
+    ordered = cholmod_metis(&view, nullptr, 0, 1, block_order.data(), &c) != 0;
+  } else {
+    ordered = cholmod_amd(&view, nullptr, 0, block_order.data(), &c) != 0;
+  }
+  if (!ordered) throw std::runtime_error("CHOLMOD could not order the matrix (status " + std::to_string(c.status) + ")");
+  return block_order;
+}
+
 } // namespace
 
 struct CholmodSolver::Cholmod {
@@ -103,48 +165,9 @@ void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& A_in) {
     cholmod_->factor = cholmod_analyze(&A_view, &c);
     statistics_.ordered_vertices = n;
   } else {
-    // The block graph: vertex k is block k of unknown_blocks, adjacent to the blocks of the
-    // rows of its first column. Stored as a full symmetric pattern; stype = 1 has CHOLMOD
-    // read its upper triangle.
     const std::vector<int> starts = unknown_blocks(A);
-    const int blocks = static_cast<int>(starts.size()) - 1;
-    std::vector<int> block_of(static_cast<std::size_t>(n));
-    for (int k = 0; k < blocks; ++k)
-      for (int j = starts[k]; j < starts[k + 1]; ++j) block_of[j] = k;
-    std::vector<int> column_start{0}, rows;
-    for (int k = 0; k < blocks; ++k) {
-      const int j = starts[k];
-      for (int q = A.outerIndexPtr()[j]; q < A.outerIndexPtr()[j + 1]; ++q) {
-        const int block = block_of[A.innerIndexPtr()[q]];
-        if (rows.size() == static_cast<std::size_t>(column_start.back()) || rows.back() != block) rows.push_back(block);
-      }
-      column_start.push_back(static_cast<int>(rows.size()));
-    }
-    cholmod_sparse graph{};
-    graph.nrow = graph.ncol = static_cast<std::size_t>(blocks);
-    graph.nzmax = rows.size();
-    graph.p = column_start.data();
-    graph.i = rows.data();
-    graph.stype = 1;
-    graph.itype = CHOLMOD_INT;
-    graph.xtype = CHOLMOD_PATTERN;
-    graph.dtype = CHOLMOD_DOUBLE;
-    graph.sorted = 1;
-    graph.packed = 1;
-
-    std::vector<int> block_order(static_cast<std::size_t>(blocks));
-    bool ordered = false;
-    if (ordering_ == "nested-dissection") {
-      std::vector<int> component_parent(static_cast<std::size_t>(blocks)), component_of(static_cast<std::size_t>(blocks));
-      ordered = cholmod_nested_dissection(&graph, nullptr, 0, block_order.data(), component_parent.data(),
-                                          component_of.data(), &c) >= 0;
-    } else if (ordering_ == "metis") {
-      ordered = cholmod_metis(&graph, nullptr, 0, 1, block_order.data(), &c) != 0;
-    } else {
-      ordered = cholmod_amd(&graph, nullptr, 0, block_order.data(), &c) != 0;
-    }
-    if (!ordered) throw std::runtime_error("CHOLMOD could not order the matrix (status " + std::to_string(c.status) + ")");
-
+    BlockGraph graph = make_block_graph(A, starts);
+    const std::vector<int> block_order = order_block_graph(graph, ordering_, c);
     // Each block's unknowns, in their order, where the block falls in the block order.
     std::vector<int> permutation;
     permutation.reserve(static_cast<std::size_t>(n));
@@ -154,7 +177,7 @@ void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& A_in) {
     c.method[0].ordering = CHOLMOD_GIVEN;
     c.postorder = 1; // CHOLMOD reorders the elimination tree for bigger supernodes; the fill stays
     cholmod_->factor = cholmod_analyze_p(&A_view, permutation.data(), nullptr, 0, &c);
-    statistics_.ordered_vertices = blocks;
+    statistics_.ordered_vertices = static_cast<int>(block_order.size());
   }
   if (!cholmod_->factor) throw std::runtime_error("CHOLMOD's analysis failed (status " + std::to_string(c.status) + ")");
   statistics_.factor_entries = c.lnz;
