@@ -76,6 +76,9 @@ void check_accepted_scene(const Scene& scene) {
     for (const int node : spec.region.node_list)
       require(node >= 0, "an accepted scene has a negative node index in a region");
   }
+  for (const CutSpec& cut : scene.cuts)
+    require(std::isfinite(cut.surface_scale) && cut.surface_scale > 0.0,
+            "an accepted scene has a cut surface scale that is not finite and positive");
   require(scene.output_every >= 1, "an accepted scene has output.every < 1");
   require(scene.quasi_static.load_steps >= 1 && scene.quasi_static.max_iterations >= 1,
           "an accepted scene has quasi_static counts below 1");
