@@ -493,6 +493,7 @@ TEST_CASE("malformed OFF files are refused, naming the file and the line") {
   check_refused_text(folder, "extra_face.off", good + "3 0 1 3\n", "line 9: more lines after the 2 faces");
   check_refused_text(folder, "two_corners.off", replaced(good, "3 0 2 3", "2 0 2"), "line 8: face 1 announces 2 corners");
   check_refused_text(folder, "too_many_corners.off", replaced(good, "3 0 2 3", "5 0 2 3"), "line 8: face 1 announces 5 corners");
+  check_refused_text(folder, "empty.off", "", "line 1: unexpected end of file while reading the OFF header");
   check_refused_text(folder, "colour_off.off", replaced(good, "OFF", "COFF"), "line 1: expected the header 'OFF'");
   check_refused_text(folder, "bad_number.off", replaced(good, "\n1 0 0\n", "\n1 0 0x\n"), "line 4: expected a number for z of vertex 1");
 

@@ -81,9 +81,9 @@ public:
     return InputError(file_, "line " + std::to_string(line_number_), problem);
   }
 
-  /// An InputError at the end of the text: the file is truncated.
+  /// An InputError at the end of the text: the file is truncated. An empty file ends on line 1.
   InputError end_error(const std::string& reading) const {
-    return InputError(file_, "line " + std::to_string(line_number_),
+    return InputError(file_, "line " + std::to_string(std::max(line_number_, 1)),
                       "unexpected end of file while reading " + reading + " (the file is truncated)");
   }
 
