@@ -18,7 +18,8 @@ namespace kerf {
 TriangleSurface surface_from_lists(const std::vector<std::array<double, 3>>& vertices,
                                    const std::vector<std::array<int, 3>>& triangles);
 
-/// Wavefront OBJ: `v x y z [w]` vertices, `f i j k ...` faces (fan-triangulated), each index
+/// Wavefront OBJ: `v x y z` vertices (with an optional weight w, or a colour r g b, which are
+/// read as numbers and dropped), `f i j k ...` faces (fan-triangulated), each index
 /// `i`, `i/t`, `i//n` or `i/t/n`, counted from 1, or from -1 backwards from the last vertex
 /// read. `vt`, `vn`, `vp`, `g`, `o`, `s`, `usemtl`, `mtllib`, `l` and `p` lines are skipped;
 /// any other statement (free-form curves and surfaces among them) is refused.
