@@ -6,7 +6,7 @@
 #   ./kerf.sh asan     the same test suite built with Address and UndefinedBehavior sanitizers
 #   ./kerf.sh bench    build and run the benchmarks (one core), print the tables
 #   ./kerf.sh book     build the book into build/release/book/html
-#   ./kerf.sh fuzz     fuzz the mesh readers and the scene parser with libFuzzer (clang), 60 s
+#   ./kerf.sh fuzz     fuzz the mesh and surface readers and the scene parser with libFuzzer (clang), 60 s
 #                      each or KERF_FUZZ_SECONDS, from the seeds in tests/fuzz/corpus
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -68,14 +68,14 @@ run_fuzzers() {
     # no leak detection for the VTK targets, neither per input (-detect_leaks) nor at exit
     # (ASAN_OPTIONS). Leaks in Kerf's own code are still caught by the other targets and by
     # ./kerf.sh asan.
-    case $reader in vtk | vtu) leaks=0 ;; esac
+    case $reader in vtk | vtu | surface_vtk) leaks=0 ;; esac
     echo "kerf.sh: fuzzing $reader for ${seconds} s (log: $log)"
     ASAN_OPTIONS=detect_leaks=$leaks UBSAN_OPTIONS=print_stacktrace=1 "./build/fuzz/bin/fuzz_$reader" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=$leaks \
       -artifact_prefix="$artifacts" -print_final_stats=1 "${inputs[@]}" >"$log" 2>&1 || status=$?
     local runs
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
-    summary+=$(printf '%-6s %10s runs  %5d inputs in its corpus' "$reader" "${runs:-?}" \
+    summary+=$(printf '%-11s %10s runs  %5d inputs in its corpus' "$reader" "${runs:-?}" \
       "$(find "$corpus" -type f | wc -l)")
     if [ "$status" -ne 0 ]; then
       summary+="  FOUND A BUG: $(ls "$artifacts")"

@@ -56,12 +56,25 @@ TEST_CASE("a full scene is read field by field") {
   REQUIRE(scene.cuts.size() == 2);
   CHECK(scene.cuts[0].edge1.x() == 0.015);
   CHECK(scene.cuts[1].surface == std::filesystem::path("/data/cut.obj"));
+  CHECK(scene.cuts[1].surface_scale == 1.0);
   CHECK(scene.time.integrator == "newmark");
   CHECK(scene.time.steps == 100);
   CHECK(scene.time.beta == 0.25);
   CHECK(scene.output_every == 5);
   CHECK(scene.solver.type == "cg-ichol");
   CHECK(scene.solver.ordering == "amd");
+}
+
+TEST_CASE("a cut surface is a path, or a file with a scale") {
+  const kerf::Scene scene = kerf::parse_scene(
+      "{" + box_mesh + R"(, "cuts": [{"surface": {"file": "cut_mm.stl", "scale": 0.001}}, {"surface": {"file": "/abs/cut.off"}}]})",
+      "scene.json", "/data");
+  REQUIRE(scene.cuts.size() == 2);
+  CHECK_FALSE(scene.cuts[0].is_rectangle);
+  CHECK(scene.cuts[0].surface == std::filesystem::path("/data/cut_mm.stl"));
+  CHECK(scene.cuts[0].surface_scale == 0.001);
+  CHECK(scene.cuts[1].surface == std::filesystem::path("/abs/cut.off"));
+  CHECK(scene.cuts[1].surface_scale == 1.0);
 }
 
 TEST_CASE("defaults: the paper's material, linear, static, CHOLMOD") {
@@ -103,6 +116,13 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "gravity": [0, 0, "down"]})", "gravity[2]"},
       {"{" + m + R"(, "traction": [{"region": {"nodes": [1]}}]})", "traction[0].total_force"},
       {"{" + m + R"(, "cuts": [{"rectangle": {"origin": [0,0,0], "edge1": [1,0,0], "edge2": [2,0,0]}}]})", "cuts[0].rectangle.edge2"},
+      {"{" + m + R"(, "cuts": [{"surface": "a.obj"}, {"surface": {"file": "b.stl", "scale": 0}}]})", "cuts[1].surface.scale"},
+      {"{" + m + R"(, "cuts": [{"surface": {"file": "b.stl", "scale": "mm"}}]})", "cuts[0].surface.scale"},
+      {"{" + m + R"(, "cuts": [{"surface": {"file": "b.stl", "scal": 0.001}}]})", "cuts[0].surface.scal"},
+      {"{" + m + R"(, "cuts": [{"surface": {"scale": 0.001}}]})", "cuts[0].surface.file"},
+      {"{" + m + R"(, "cuts": [{"surface": {"file": ""}}]})", "cuts[0].surface.file"},
+      {"{" + m + R"(, "cuts": [{"surface": ""}]})", "cuts[0].surface"},
+      {"{" + m + R"(, "cuts": [{"surface": 7}]})", "cuts[0].surface"},
       {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0, "steps": 10}})", "time.dt"},
       {"{" + m + R"(, "time": {"integrator": "euler"}})", "time.integrator"},
       {"{" + m + R"(, "time": {"integrator": "static", "dt": 0.1}})", "time.dt"},

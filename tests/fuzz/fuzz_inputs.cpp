@@ -1,7 +1,9 @@
 #include "fuzz_inputs.hpp"
 
 #include "kerf/app/input_error.hpp"
+#include "kerf/mesh/check_triangle_surface.hpp"
 #include "kerf/mesh/read_mesh.hpp"
+#include "kerf/mesh/read_surface.hpp"
 #include "kerf/scene/scene.hpp"
 
 #include <unistd.h>
@@ -32,6 +34,22 @@ void check_accepted_mesh(const TetMesh& mesh) {
           "an accepted mesh has a node index outside [0, #V)");
 }
 
+/// The checks every accepted cut surface must pass (see triangle_surface.hpp): indices in
+/// range, finite coordinates, and a surface already welded and oriented, which a second pass
+/// of the check leaves as it is.
+void check_accepted_surface(const TriangleSurface& surface) {
+  require(surface.num_triangles() > 0, "an accepted surface has no triangles");
+  require(surface.vertices.allFinite(), "an accepted surface has a coordinate that is not finite");
+  require(surface.triangles.minCoeff() >= 0 && surface.triangles.maxCoeff() < surface.num_vertices(),
+          "an accepted surface has a vertex index outside [0, #V)");
+  TriangleSurface again = surface;
+  const SurfaceCheck check = check_triangle_surface(again, "fuzz");
+  require(check.merged_vertices == 0 && check.unused_vertices == 0 && check.flipped_triangles == 0,
+          "an accepted surface changes when it is checked again");
+  require(again.vertices == surface.vertices && again.triangles == surface.triangles,
+          "an accepted surface changes when it is checked again");
+}
+
 /// The checks every accepted scene must pass: the ranges of the book's scene reference.
 void check_accepted_scene(const Scene& scene) {
   require(scene.mesh.order == 1 || scene.mesh.order == 2, "an accepted scene has mesh.order " +
@@ -58,6 +76,9 @@ void check_accepted_scene(const Scene& scene) {
     for (const int node : spec.region.node_list)
       require(node >= 0, "an accepted scene has a negative node index in a region");
   }
+  for (const CutSpec& cut : scene.cuts)
+    require(std::isfinite(cut.surface_scale) && cut.surface_scale > 0.0,
+            "an accepted scene has a cut surface scale that is not finite and positive");
   require(scene.output_every >= 1, "an accepted scene has output.every < 1");
   require(scene.quasi_static.load_steps >= 1 && scene.quasi_static.max_iterations >= 1,
           "an accepted scene has quasi_static counts below 1");
@@ -92,7 +113,9 @@ private:
 } // namespace
 
 std::vector<FuzzedReader> fuzzed_readers() {
-  return {{"gmsh", ".msh"}, {"vtk", ".vtk"}, {"vtu", ".vtu"}, {"medit", ".mesh"}, {"scene", ".json"}};
+  return {{"gmsh", ".msh"},          {"vtk", ".vtk"},          {"vtu", ".vtu"},
+          {"medit", ".mesh"},        {"scene", ".json"},       {"surface_obj", ".obj"},
+          {"surface_stl", ".stl"},   {"surface_off", ".off"},  {"surface_vtk", ".vtk"}};
 }
 
 FuzzedReader fuzzed_reader(std::string_view name) {
@@ -105,6 +128,9 @@ Verdict feed_to_reader(const FuzzedReader& reader, std::string_view bytes) {
   try {
     if (reader.name == "scene") {
       check_accepted_scene(parse_scene(std::string(bytes), "fuzz.json", "."));
+    } else if (reader.name.rfind("surface_", 0) == 0) {
+      const ScratchFile file(reader, bytes);
+      check_accepted_surface(read_surface(file.path(), 1.0, nullptr));
     } else {
       const ScratchFile file(reader, bytes);
       check_accepted_mesh(read_mesh(file.path(), nullptr));

@@ -85,5 +85,5 @@ TEST_CASE("the inputs that used to be read wrongly without a word are now refuse
 TEST_CASE("fuzzed_reader knows every reader by its corpus folder's name, and no other") {
   for (const auto& entry : fs::directory_iterator(fuzz_folder / "corpus"))
     CHECK_NOTHROW(kerf::fuzz::fuzzed_reader(entry.path().filename().string()));
-  CHECK_THROWS_AS(kerf::fuzz::fuzzed_reader("stl"), std::invalid_argument);
+  CHECK_THROWS_AS(kerf::fuzz::fuzzed_reader("ply"), std::invalid_argument);
 }

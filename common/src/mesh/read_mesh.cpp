@@ -4,17 +4,14 @@
 #include "kerf/mesh/read_gmsh.hpp"
 #include "kerf/mesh/read_medit.hpp"
 #include "kerf/mesh/read_vtk.hpp"
+#include "mesh/file_bytes.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <string>
 
 namespace kerf {
 
 TetMesh read_mesh(const std::filesystem::path& file, std::ostream* warnings) {
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_extension(file);
   if (extension == ".msh") return read_gmsh(file, warnings);
   if (extension == ".vtu" || extension == ".vtk") return read_vtk(file, warnings);
   if (extension == ".mesh") return read_medit(file, warnings);

@@ -2,8 +2,10 @@
 
 #include "kerf/app/input_error.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
+#include "mesh/file_bytes.hpp"
 #include "mesh/vtk_error_catcher.hpp"
 #include "mesh/vtk_legacy_mesh_part.hpp"
+#include "mesh/vtk_reader_checks.hpp"
 #include "mesh/vtu_counts.hpp"
 
 #include <vtkAlgorithm.h>
@@ -11,77 +13,29 @@
 #include <vtkCellType.h>
 #include <vtkCell.h>
 #include <vtkCellTypes.h>
-#include <vtkCommand.h>
-#include <vtkExecutive.h>
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
-#include <cctype>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace kerf {
 namespace {
 
-/// Runs a reader and returns its grid, turning the error events `catcher` hears into an InputError.
+/// Runs a reader whose output is an unstructured grid and returns the grid.
 vtkSmartPointer<vtkUnstructuredGrid> run_reader(vtkAlgorithm& reader, VtkMessageCatcher& catcher,
                                                 const std::string& file, std::ostream* warnings) {
-  // Errors come from the reader and, when the reader fails, from the pipeline executive that
-  // ran it ("Algorithm ... returned failure"): we listen to both.
-  reader.AddObserver(vtkCommand::ErrorEvent, &catcher);
-  reader.AddObserver(vtkCommand::WarningEvent, &catcher);
-  reader.GetExecutive()->AddObserver(vtkCommand::ErrorEvent, &catcher);
-  reader.GetExecutive()->AddObserver(vtkCommand::WarningEvent, &catcher);
-  reader.Update();
-  if (warnings)
-    for (const auto& warning : catcher.warnings)
-      *warnings << "warning: " << file << ": " << warning << "\n";
-  if (!catcher.error.empty()) throw InputError(file, "VTK reader", catcher.error);
-  if (reader.GetErrorCode() != 0)
-    throw InputError(file, "VTK reader", "the file could not be read (VTK error code " +
-                                             std::to_string(reader.GetErrorCode()) + ")");
-  auto* grid = vtkUnstructuredGrid::SafeDownCast(reader.GetOutputDataObject(0));
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(run_vtk_reader(reader, catcher, file, warnings));
   if (!grid) throw InputError(file, "VTK reader", "the file holds no unstructured grid");
   return grid;
-}
-
-/// Refuses a grid whose cells cannot be walked safely. VTK's readers take a file's offsets on
-/// trust: an offset that goes backwards, or past the end of the connectivity, reaches
-/// vtkUnstructuredGrid::GetCellPoints() as a negative length and crashes it, and a cell type
-/// list of the wrong length makes GetCellType() read past its end. A point id out of range
-/// would make any later look-up of the cell's points read outside the points.
-void check_cells(vtkUnstructuredGrid& grid, const std::string& file) {
-  if (grid.GetNumberOfCells() == 0) return;
-  vtkCellArray* cells = grid.GetCells();
-  if (!cells || !cells->IsValid())
-    throw InputError(file, "cells", "the cell offsets do not increase from 0 to the number of "
-                                    "point ids in the connectivity");
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c) {
-    cells->GetCellAtId(c, ids);
-    for (vtkIdType a = 0; a < ids->GetNumberOfIds(); ++a)
-      if (ids->GetId(a) < 0 || ids->GetId(a) >= grid.GetNumberOfPoints())
-        throw InputError(file, "cell " + std::to_string(c),
-                         "node index " + std::to_string(ids->GetId(a)) + " is outside [0, " +
-                             std::to_string(grid.GetNumberOfPoints()) + ")");
-  }
-  vtkUnsignedCharArray* types = grid.GetCellTypesArray();
-  const vtkIdType num_types = types ? types->GetNumberOfValues() : 0;
-  if (num_types != cells->GetNumberOfCells())
-    throw InputError(file, "cell types", "the file gives " + std::to_string(num_types) +
-                                             " cell types for " +
-                                             std::to_string(cells->GetNumberOfCells()) + " cells");
 }
 
 /// Copies the points and the tetrahedra of a VTK grid into a TetMesh.
@@ -89,7 +43,7 @@ TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
   TetMesh mesh;
   if (!grid.GetPoints() || grid.GetNumberOfPoints() == 0)
     throw InputError(file, "points", "the file has no points");
-  check_cells(grid, file);
+  check_grid_cells(grid, file);
   mesh.nodes.resize(grid.GetNumberOfPoints(), 3);
   for (vtkIdType v = 0; v < grid.GetNumberOfPoints(); ++v) {
     double x[3];
@@ -129,7 +83,7 @@ TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
                        "expected " + std::to_string(per_tet) + " points, found " +
                            std::to_string(ids->GetNumberOfIds()));
     for (int a = 0; a < per_tet; ++a) {
-      // check_cells() checked the range; clamping keeps an id past 2^31 from wrapping around.
+      // check_grid_cells() checked the range; clamping keeps an id past 2^31 from wrapping around.
       const vtkIdType id = std::clamp<vtkIdType>(ids->GetId(a), -1, std::numeric_limits<int>::max());
       mesh.tets(static_cast<Eigen::Index>(t), a) = static_cast<int>(id);
     }
@@ -137,34 +91,16 @@ TetMesh mesh_from_grid(vtkUnstructuredGrid& grid, const std::string& file) {
   return mesh;
 }
 
-/// The extension of a file name in lower case, ".vtu" for "Liver.VTU".
-std::string lower_extension(const std::filesystem::path& file) {
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
-/// The whole content of a file, bytes as they are.
-std::string file_bytes(const std::filesystem::path& file, const std::string& name) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (!in) throw InputError(name, "file", "cannot be read");
-  return bytes.str();
-}
-
 } // namespace
 
 TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
   const std::string name = file.string();
-  if (!std::filesystem::exists(file)) throw InputError(name, "file", "does not exist");
-  if (std::filesystem::is_directory(file)) throw InputError(name, "file", "is a folder");
+  const std::string bytes = file_bytes(file, name);
 
   vtkNew<VtkMessageCatcher> catcher;
   vtkSmartPointer<vtkUnstructuredGrid> grid;
   if (lower_extension(file) == ".vtu") {
-    check_vtu_counts(file_bytes(file, name), name);
+    check_vtu_counts(bytes, name);
     vtkNew<vtkXMLUnstructuredGridReader> reader;
     // The XML reader parses with helper objects of its own; these setters hand them our
     // observer, so that their complaints reach us too.
@@ -174,7 +110,7 @@ TetMesh read_vtk(const std::filesystem::path& file, std::ostream* warnings) {
     grid = run_reader(*reader, *catcher, name, warnings);
   } else {
     // VTK reads the checked part from memory, never the file itself (vtk_legacy_mesh_part.hpp).
-    const std::string mesh_part = vtk_legacy_mesh_part(file_bytes(file, name), name);
+    const std::string mesh_part = vtk_legacy_mesh_part(bytes, name, VtkLegacyDataset::unstructured_grid);
     if (mesh_part.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
       throw InputError(name, "file", "a legacy .vtk mesh above 2 GB is not supported; save it as .vtu");
     vtkNew<vtkUnstructuredGridReader> reader;

@@ -230,7 +230,7 @@ void check_binary_cell_lists(const std::string& text, std::size_t at, long long 
 
 } // namespace
 
-std::string vtk_legacy_mesh_part(const std::string& text, const std::string& file) {
+std::string vtk_legacy_mesh_part(const std::string& text, const std::string& file, VtkLegacyDataset datasets) {
   // The header is four lines: version, title, ASCII or BINARY, DATASET. We check the first
   // and the last, and read the encoding; VTK checks the rest.
   std::size_t line_start = 0;
@@ -244,9 +244,12 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
   // would reach it unchecked, so the DATASET line must be two words and nothing else.
   WordCursor dataset(header[3], 0, 4);
   dataset.next();
-  const bool is_unstructured = upper(dataset.next()) == "UNSTRUCTURED_GRID";
-  if (!is_unstructured || !dataset.next().empty())
-    throw InputError(file, "line 4", "expected 'DATASET UNSTRUCTURED_GRID' alone on the line");
+  const std::string dataset_type = upper(dataset.next());
+  const bool polydata_allowed = datasets == VtkLegacyDataset::unstructured_grid_or_polydata;
+  const bool is_polydata = dataset_type == "POLYDATA";
+  if (!(dataset_type == "UNSTRUCTURED_GRID" || (is_polydata && polydata_allowed)) || !dataset.next().empty())
+    throw InputError(file, "line 4", polydata_allowed ? "expected 'DATASET UNSTRUCTURED_GRID' or 'DATASET POLYDATA' alone on the line"
+                                                      : "expected 'DATASET UNSTRUCTURED_GRID' alone on the line");
   const bool ascii = starts_with(upper(WordCursor(header[2], 0, 3).next()), "ASCII");
   // The version decides the cell layout, so it must read as "major.minor", as VTK parses it.
   const std::size_t version_at = upper(header[0]).find("VERSION");
@@ -265,13 +268,22 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
 
   const auto max_count = static_cast<long long>(text.size());
   // VTK's reader dereferences a null pointer when the points or the cells never come, so the
-  // part it sees must hold all three sections (Kerf needs them anyway).
-  bool has_points = false, has_cells = false, has_cell_types = false;
+  // part it sees must hold all the sections a dataset needs (Kerf needs them anyway). For
+  // polydata the cells are the POLYGONS or TRIANGLE_STRIPS (vertices and lines may come too).
+  bool has_points = false, has_cells = false, has_cell_types = is_polydata;
+  const char* cells_keyword = is_polydata ? "POLYGONS" : "CELLS";
   const auto checked_part = [&](std::size_t end) {
-    for (const auto& [seen, keyword] : {std::pair{has_points, "POINTS"}, std::pair{has_cells, "CELLS"},
+    for (const auto& [seen, keyword] : {std::pair{has_points, "POINTS"}, std::pair{has_cells, cells_keyword},
                                         std::pair{has_cell_types, "CELL_TYPES"}})
-      if (!seen) throw InputError(file, keyword, std::string("the file has no ") + keyword + " line");
+      if (!seen)
+        throw InputError(file, keyword, std::string("the file has no ") + keyword +
+                                            (is_polydata && !has_cells ? " or TRIANGLE_STRIPS" : "") + " line");
     return text.substr(0, end);
+  };
+  // The sections that hold cell lists laid out as CELLS: polydata has four of them.
+  const auto is_cell_list = [&](const std::string& name) {
+    return is_polydata ? name == "VERTICES" || name == "LINES" || name == "POLYGONS" || name == "TRIANGLE_STRIPS"
+                       : name == "CELLS";
   };
   int line_number = 5;
   while (line_start < text.size()) {
@@ -299,7 +311,7 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
                                                              : std::numeric_limits<double>::max();
           for (long long i = 0; i < 3 * counts[0]; ++i)
             check.real(largest, "coordinate " + std::to_string(i % 3) + " of point " + std::to_string(i / 3));
-        } else if (std::string(name) == "CELLS") {
+        } else if (is_cell_list(name)) {
           if (offsets_layout)
             check_offsets_and_connectivity(check, counts[0], counts[1]);
           else
@@ -310,7 +322,7 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
         }
         next_line = data.position();
         next_line_number = data.line();
-      } else if (std::string(name) == "CELLS" && !offsets_layout) {
+      } else if (is_cell_list(name) && !offsets_layout) {
         check_binary_cell_lists(text, line_end + 1, counts[0], counts[1], check);
       }
     };
@@ -327,6 +339,13 @@ std::string vtk_legacy_mesh_part(const std::string& text, const std::string& fil
     if (starts_with(keyword, "POINTS")) {
       section("POINTS", 1);
       has_points = true;
+    } else if (is_polydata) {
+      for (const char* list : {"VERTICES", "LINES", "POLYGONS", "TRIANGLE_STRIPS"})
+        if (starts_with(keyword, list)) {
+          section(list, 2);
+          has_cells = has_cells || std::string(list) == "POLYGONS" || std::string(list) == "TRIANGLE_STRIPS";
+          break;
+        }
     } else if (starts_with(keyword, "CELLS")) {
       section("CELLS", 2);
       has_cells = true;

@@ -13,7 +13,8 @@ namespace kerf {
 void check_vtu_counts(const std::string& text, const std::string& file) {
   // Appended data is raw bytes that may hold anything, attribute-like text included.
   const std::string_view xml = std::string_view(text).substr(0, text.find("<AppendedData"));
-  for (const char* attribute : {"NumberOfComponents", "NumberOfPoints", "NumberOfCells", "NumberOfTuples"}) {
+  for (const char* attribute : {"NumberOfComponents", "NumberOfPoints", "NumberOfCells", "NumberOfTuples",
+                                "NumberOfVerts", "NumberOfLines", "NumberOfStrips", "NumberOfPolys"}) {
     const std::string opening = std::string(attribute) + "=\"";
     const long long largest = std::string_view(attribute) == "NumberOfComponents"
                                   ? std::min<long long>(static_cast<long long>(text.size()),

@@ -238,7 +238,8 @@ std::vector<TractionSpec> read_tractions(const ObjectReader& r) {
   });
 }
 
-/// "cuts": rectangles (a corner and two edges) or triangle-mesh surfaces (paths relative to the scene).
+/// "cuts": rectangles (a corner and two edges) or triangle-mesh surfaces (paths relative to the
+/// scene, with an optional scale).
 std::vector<CutSpec> read_cuts(const ObjectReader& r, const std::filesystem::path& base) {
   return read_list<CutSpec>(r, "cuts", [&](const json& entry, const std::string& path) {
     ObjectReader c(entry, path, r.file());
@@ -257,9 +258,24 @@ std::vector<CutSpec> read_cuts(const ObjectReader& r, const std::filesystem::pat
       if (spec.edge1.cross(spec.edge2).norm() == 0.0)
         rect.fail(path + ".rectangle.edge2", "expected edge1 and edge2 to span a rectangle (they are parallel or zero)");
     } else {
+      // A path alone, or {"file": path, "scale": s} for a file in other units than metres.
       spec.is_rectangle = false;
-      const std::filesystem::path surface = c.text("surface", "");
-      if (surface.empty()) c.fail(path + ".surface", "expected a non-empty path");
+      std::filesystem::path surface;
+      std::string surface_field = path + ".surface";
+      if (c.at("surface").is_object()) {
+        ObjectReader surface_object(c.at("surface"), path + ".surface", r.file());
+        surface_object.allow_only({"file", "scale"});
+        surface_object.at("file");
+        surface = surface_object.text("file", "");
+        surface_field = surface_object.field("file");
+        spec.surface_scale = surface_object.number("scale", 1.0);
+        if (!(spec.surface_scale > 0.0)) surface_object.fail(surface_object.field("scale"), "expected a positive number");
+      } else if (c.at("surface").is_string()) {
+        surface = c.text("surface", "");
+      } else {
+        c.fail(surface_field, "expected a path or {\"file\": path, \"scale\": s}, got " + type_name(c.at("surface")));
+      }
+      if (surface.empty()) c.fail(surface_field, "expected a non-empty path");
       spec.surface = surface.is_absolute() ? surface : base / surface;
     }
     return spec;

@@ -58,7 +58,8 @@ struct TractionSpec {
 struct CutSpec {
   bool is_rectangle = true;
   Eigen::Vector3d origin{0, 0, 0}, edge1{0, 0, 0}, edge2{0, 0, 0}; ///< m
-  std::filesystem::path surface;                                    ///< triangle mesh file
+  std::filesystem::path surface;                                    ///< triangle mesh file (read_surface())
+  double surface_scale = 1.0; ///< what the surface file's coordinates are multiplied by (0.001 for mm)
 };
 
 /// Time integration: "static", or "newmark" with its parameters (chapter 6 on).
