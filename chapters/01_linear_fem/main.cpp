@@ -132,7 +132,9 @@ void LinearElasticity::make_mesh() {
 // pivots and return a huge, finite, wrong answer. The assembler builds the
 // sparsity pattern of \f$K_{ff}\f$ here, once, together with the position of every element
 // entry in it; the solver analyses that pattern (fill-reducing ordering, symbolic
-// factorisation) once too.
+// factorisation) once too. The ordering decides what the factorisation costs; CHOLMOD computes
+// it here on the graph of the nodes rather than of the unknowns, three times smaller and as
+// good (kerf::CholmodSolver; the results page measures the difference).
 void LinearElasticity::setup_system() {
   dofs_ = kerf::scene_dof_map(scene_, mesh_, &std::cerr);
   lap("unknowns");
