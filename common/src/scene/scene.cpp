@@ -1,6 +1,7 @@
 #include "kerf/scene/scene.hpp"
 
 #include "kerf/app/input_error.hpp"
+#include "kerf/solve/cholmod_solver.hpp"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
@@ -361,10 +362,9 @@ SolverSettings read_solver(const ObjectReader& r) {
   if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol" && type != "cg-cholmod")
     s.fail("solver.type",
            "expected \"cholmod\", \"ldlt\", \"cg-jacobi\", \"cg-ichol\" or \"cg-cholmod\", got \"" + type + "\"");
-  const auto& ordering = solver.ordering;
-  if (ordering != "nested-dissection" && ordering != "metis" && ordering != "amd" && ordering != "cholmod")
+  if (!is_cholmod_ordering(solver.ordering))
     s.fail("solver.ordering",
-           "expected \"nested-dissection\", \"metis\", \"amd\" or \"cholmod\", got \"" + ordering + "\"");
+           "expected \"nested-dissection\", \"metis\", \"amd\" or \"cholmod\", got \"" + solver.ordering + "\"");
   if (!(solver.tolerance > 0.0 && solver.tolerance < 1.0)) s.fail("solver.tolerance", "expected a number in (0, 1)");
   if (solver.max_iterations < 1) s.fail("solver.max_iterations", "expected a positive integer");
   if (solver.refresh_iterations < 1) s.fail("solver.refresh_iterations", "expected a positive integer");

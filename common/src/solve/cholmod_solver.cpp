@@ -33,23 +33,31 @@ private:
   int was_dynamic_;
 };
 
-// CHOLMOD's view of an Eigen matrix with both triangles stored, compressed: no copy. stype = -1
-// tells CHOLMOD to read the lower triangle only and take A as symmetric.
-cholmod_sparse view_lower_triangle(const Eigen::SparseMatrix<double>& A) {
+// CHOLMOD's view of a matrix in compressed columns (n x n, column j's rows at
+// rows[column_start[j] .. column_start[j+1])), without a copy: CHOLMOD reads, never writes,
+// a matrix it orders or factorises. `values` null means a pattern. stype -1 has CHOLMOD read
+// the lower triangle only and take the matrix as symmetric, stype 1 the upper.
+cholmod_sparse compressed_column_view(std::size_t n, std::size_t entries, const int* column_start, const int* rows,
+                                      const double* values, int stype) {
   cholmod_sparse view{};
-  view.nrow = static_cast<std::size_t>(A.rows());
-  view.ncol = static_cast<std::size_t>(A.cols());
-  view.nzmax = static_cast<std::size_t>(A.nonZeros());
-  view.p = const_cast<int*>(A.outerIndexPtr()); // CHOLMOD reads, never writes, a matrix it factorises
-  view.i = const_cast<int*>(A.innerIndexPtr());
-  view.x = const_cast<double*>(A.valuePtr());
-  view.stype = -1;
+  view.nrow = view.ncol = n;
+  view.nzmax = entries;
+  view.p = const_cast<int*>(column_start);
+  view.i = const_cast<int*>(rows);
+  view.x = const_cast<double*>(values);
+  view.stype = stype;
   view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
+  view.xtype = values ? CHOLMOD_REAL : CHOLMOD_PATTERN;
   view.dtype = CHOLMOD_DOUBLE;
   view.sorted = 1;
   view.packed = 1;
   return view;
+}
+
+// An Eigen matrix with both triangles stored, compressed: its lower triangle is read.
+cholmod_sparse view_lower_triangle(const Eigen::SparseMatrix<double>& A) {
+  return compressed_column_view(static_cast<std::size_t>(A.rows()), static_cast<std::size_t>(A.nonZeros()),
+                                A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), -1);
 }
 
 // The graph of the blocks of unknown_blocks: vertex k is block k, adjacent to the blocks of the
@@ -58,20 +66,9 @@ cholmod_sparse view_lower_triangle(const Eigen::SparseMatrix<double>& A) {
 struct BlockGraph {
   std::vector<int> column_start{0}, rows;
 
-  // CHOLMOD's view of it; stype = 1 has CHOLMOD read its upper triangle and take it as symmetric.
-  cholmod_sparse view() {
-    cholmod_sparse graph{};
-    graph.nrow = graph.ncol = column_start.size() - 1;
-    graph.nzmax = rows.size();
-    graph.p = column_start.data();
-    graph.i = rows.data();
-    graph.stype = 1;
-    graph.itype = CHOLMOD_INT;
-    graph.xtype = CHOLMOD_PATTERN;
-    graph.dtype = CHOLMOD_DOUBLE;
-    graph.sorted = 1;
-    graph.packed = 1;
-    return graph;
+  // CHOLMOD's view of it, its upper triangle read.
+  cholmod_sparse view() const {
+    return compressed_column_view(column_start.size() - 1, rows.size(), column_start.data(), rows.data(), nullptr, 1);
   }
 };
 
@@ -97,7 +94,7 @@ BlockGraph make_block_graph(const Eigen::SparseMatrix<double>& A, const std::vec
 
 // The fill-reducing order of the block graph, with the named method: block_order[i] is the
 // block eliminated i-th.
-std::vector<int> order_block_graph(BlockGraph& graph, const std::string& ordering, cholmod_common& c) {
+std::vector<int> order_block_graph(const BlockGraph& graph, const std::string& ordering, cholmod_common& c) {
   cholmod_sparse view = graph.view();
   const std::size_t blocks = view.ncol;
   std::vector<int> block_order(blocks);
@@ -144,8 +141,12 @@ struct CholmodSolver::Cholmod {
   }
 };
 
+bool is_cholmod_ordering(const std::string& name) {
+  return name == "nested-dissection" || name == "metis" || name == "amd" || name == "cholmod";
+}
+
 CholmodSolver::CholmodSolver(const std::string& ordering) : cholmod_(std::make_unique<Cholmod>()), ordering_(ordering) {
-  if (ordering != "nested-dissection" && ordering != "metis" && ordering != "amd" && ordering != "cholmod")
+  if (!is_cholmod_ordering(ordering))
     throw std::invalid_argument("unknown ordering '" + ordering + "' (expected nested-dissection, metis, amd or cholmod)");
 }
 
@@ -166,7 +167,7 @@ void CholmodSolver::analyze_pattern(const Eigen::SparseMatrix<double>& A_in) {
     statistics_.ordered_vertices = n;
   } else {
     const std::vector<int> starts = unknown_blocks(A);
-    BlockGraph graph = make_block_graph(A, starts);
+    const BlockGraph graph = make_block_graph(A, starts);
     const std::vector<int> block_order = order_block_graph(graph, ordering_, c);
     // Each block's unknowns, in their order, where the block falls in the block order.
     std::vector<int> permutation;

@@ -17,6 +17,9 @@ struct CholmodStatistics {
   int ordered_vertices = 0;        ///< vertices of the graph the ordering saw: blocks, or unknowns
 };
 
+/// Whether `name` is one of CholmodSolver's orderings (the scene checks its field with this).
+bool is_cholmod_ordering(const std::string& name);
+
 /// A x = b by a supernodal Cholesky factorisation A = P^T L L^T P (SuiteSparse CHOLMOD).
 ///
 /// The cost of the factorisation is set by the fill-reducing permutation P. Which one is the
