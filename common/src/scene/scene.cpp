@@ -1,7 +1,7 @@
 #include "kerf/scene/scene.hpp"
 
 #include "kerf/app/input_error.hpp"
-#include "kerf/solve/cholmod_solver.hpp"
+#include "kerf/solve/cholmod_ordering.hpp"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>

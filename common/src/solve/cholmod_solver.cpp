@@ -141,10 +141,6 @@ struct CholmodSolver::Cholmod {
   }
 };
 
-bool is_cholmod_ordering(const std::string& name) {
-  return name == "nested-dissection" || name == "metis" || name == "amd" || name == "cholmod";
-}
-
 CholmodSolver::CholmodSolver(const std::string& ordering) : cholmod_(std::make_unique<Cholmod>()), ordering_(ordering) {
   if (!is_cholmod_ordering(ordering))
     throw std::invalid_argument("unknown ordering '" + ordering + "' (expected nested-dissection, metis, amd or cholmod)");

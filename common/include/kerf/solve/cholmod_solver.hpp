@@ -3,6 +3,7 @@
 /// computed on the mesh's nodes.
 #pragma once
 
+#include "kerf/solve/cholmod_ordering.hpp"
 #include "kerf/solve/linear_solver.hpp"
 
 #include <memory>
@@ -16,9 +17,6 @@ struct CholmodStatistics {
   double factorisation_flops = 0.0; ///< floating-point operations of one numeric factorisation
   int ordered_vertices = 0;        ///< vertices of the graph the ordering saw: blocks, or unknowns
 };
-
-/// Whether `name` is one of CholmodSolver's orderings (the scene checks its field with this).
-bool is_cholmod_ordering(const std::string& name);
 
 /// A x = b by a supernodal Cholesky factorisation A = P^T L L^T P (SuiteSparse CHOLMOD).
 ///
