@@ -1,0 +1,272 @@
+#include "kerf/cut/tet_pieces.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace kerf {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Corners = Eigen::Matrix<double, 4, 3>;
+
+Kernel::Point_3 to_cgal(const Eigen::Vector3d& x) { return {x[0], x[1], x[2]}; }
+
+// The side function of a triangle's plane. A corner of the tet gets the exact sign of
+// orientation(T0, T1, T2, corner) (positive above, where (T1 - T0) x (T2 - T0) points), and a
+// value of that sign; any other point gets its distance to the plane, snapped to 0 within the
+// tolerance. The value of a corner that the predicate puts strictly on one side is never 0,
+// however small its distance: the exact decision wins over round-off.
+struct TrianglePlaneSide {
+  const CutTriangle* triangle;
+  const Corners* X;
+  Eigen::Vector3d normal; // unit
+  double offset;
+  double tolerance;
+
+  double operator()(const Eigen::Vector3d& x) const {
+    const double distance = normal.dot(x) - offset;
+    for (int k = 0; k < 4; ++k) {
+      if (x != X->row(k).transpose()) continue;
+      const CGAL::Orientation o = CGAL::orientation(to_cgal(triangle->corners[0]), to_cgal(triangle->corners[1]),
+                                                    to_cgal(triangle->corners[2]), to_cgal(x));
+      if (o == CGAL::COPLANAR) return 0.0;
+      const double sign = o == CGAL::POSITIVE ? 1.0 : -1.0;
+      return sign * std::max(std::abs(distance), std::numeric_limits<double>::min());
+    }
+    return std::abs(distance) <= tolerance ? 0.0 : distance;
+  }
+};
+
+// The side function of any other plane (through an edge of a triangle, or a face of a cell):
+// the distance, snapped.
+struct SnappedPlaneSide {
+  Eigen::Vector3d normal; // unit
+  double offset;
+  double tolerance;
+  double operator()(const Eigen::Vector3d& x) const {
+    const double distance = normal.dot(x) - offset;
+    return std::abs(distance) <= tolerance ? 0.0 : distance;
+  }
+};
+
+// The plane of a face of a cell, with its outward normal: value > 0 outside the cell.
+SnappedPlaneSide face_plane(const CellFace& face, double tolerance) {
+  const Eigen::Vector3d n = polygon_area_vector(face.polygon).normalized();
+  return {n, n.dot(face.polygon.front()), tolerance};
+}
+
+// Clips a convex polygon to the closed half-space value <= 0 (with the snap: points within
+// the tolerance are kept). Keeps only the part inside; may leave fewer than 3 points, which
+// still tell that the polygon touches the half-space.
+std::vector<Eigen::Vector3d> keep_below(const std::vector<Eigen::Vector3d>& polygon, const SnappedPlaneSide& side) {
+  std::vector<Eigen::Vector3d> kept;
+  const std::size_t n = polygon.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3d& p = polygon[k];
+    const Eigen::Vector3d& q = polygon[(k + 1) % n];
+    const double sp = side(p), sq = side(q);
+    if (sp <= 0.0) kept.push_back(p);
+    if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0)) kept.push_back(p + sp / (sp - sq) * (q - p));
+  }
+  return kept;
+}
+
+// Whether the closed cell and the convex polygon P (in any plane) have a point in common.
+bool cell_touches(const ConvexCell& cell, std::vector<Eigen::Vector3d> P, double tolerance) {
+  for (const CellFace& face : cell.faces) {
+    if (face.polygon.size() < 3) continue;
+    const Eigen::Vector3d a = polygon_area_vector(face.polygon);
+    if (a.norm() == 0.0) continue; // a flat sliver face bounds nothing
+    P = keep_below(P, face_plane(face, tolerance));
+    if (P.empty()) return false;
+  }
+  return true;
+}
+
+// Whether point x lies in the closed triangle t, given that it lies in t's plane: its three
+// barycentric coordinates (by areas in the plane) are >= -tolerance relative.
+bool in_triangle(const Eigen::Vector3d& x, const CutTriangle& t, const Eigen::Vector3d& unit_normal) {
+  const double twice_area = (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).dot(unit_normal);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d& p = t.corners[(k + 1) % 3];
+    const Eigen::Vector3d& q = t.corners[(k + 2) % 3];
+    if ((q - p).cross(x - p).dot(unit_normal) < -1e-12 * twice_area) return false;
+  }
+  return true;
+}
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+} // namespace
+
+const char* to_string(SurfaceCutState state) {
+  switch (state) {
+  case SurfaceCutState::uncut: return "uncut";
+  case SurfaceCutState::touched: return "touched";
+  case SurfaceCutState::partially_cut: return "partially cut";
+  case SurfaceCutState::completely_cut: return "completely cut";
+  }
+  return "unknown";
+}
+
+TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle>& triangles) {
+  TetPieces result;
+  Eigen::Matrix3d J;
+  for (int c = 0; c < 3; ++c) J.col(c) = (X.row(c + 1) - X.row(0)).transpose();
+  result.volume = std::abs(J.determinant()) / 6.0;
+  double diameter = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) diameter = std::max(diameter, (X.row(i) - X.row(j)).norm());
+  const double tolerance = 1e-12 * diameter;
+
+  std::vector<ConvexCell>& cells = result.cells;
+  cells.push_back(tet_cell(X));
+  // The tet's four faces as inward-pointing half-spaces, to clip each triangle to the tet.
+  const ConvexCell tet = cells.front();
+
+  std::vector<Eigen::Vector3d> unit_normals(triangles.size());
+  for (std::size_t k = 0; k < triangles.size(); ++k) {
+    const CutTriangle& T = triangles[k];
+    const Eigen::Vector3d n = (T.corners[1] - T.corners[0]).cross(T.corners[2] - T.corners[0]).normalized();
+    unit_normals[k] = n;
+
+    // 1. P_T, the part of T in the closed tet.
+    std::vector<Eigen::Vector3d> P(T.corners.begin(), T.corners.end());
+    for (const CellFace& face : tet.faces) {
+      P = keep_below(P, face_plane(face, tolerance));
+      if (P.empty()) break;
+    }
+    if (P.size() < 3) continue; // T misses the tet, or touches it in a point or a segment only
+
+    // 2. The cells that touch P_T, split by the planes through T's edges, inner side = towards
+    // the opposite corner (value >= 0 inside the triangle's prism).
+    std::vector<int> near;
+    for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+      if (cell_touches(cells[c], P, tolerance)) near.push_back(c);
+    std::array<SnappedPlaneSide, 3> edge_sides;
+    for (int e = 0; e < 3; ++e) {
+      const Eigen::Vector3d& p = T.corners[e];
+      const Eigen::Vector3d& q = T.corners[(e + 1) % 3];
+      Eigen::Vector3d m = n.cross(q - p).normalized(); // in T's plane, perpendicular to the edge, pointing inwards
+      edge_sides[e] = {m, m.dot(p), tolerance};
+      const Plane plane{m, m.dot(p)};
+      const std::size_t count = near.size();
+      for (std::size_t i = 0; i < count; ++i) {
+        const int b = split_cell(cells, near[i], edge_sides[e], plane, {FaceOrigin::Kind::edge_plane, static_cast<int>(k)});
+        if (b >= 0 && cell_touches(cells[b], P, tolerance)) near.push_back(b);
+      }
+    }
+    // ... and the cells inside the prism by T's own plane: their new faces lie inside T.
+    const TrianglePlaneSide side{&T, &X, n, n.dot(T.corners[0]), tolerance};
+    const Plane plane{n, n.dot(T.corners[0])};
+    for (const int c : near) {
+      bool inside = true;
+      for (int e = 0; e < 3 && inside; ++e) inside = cell_side(cells[c], edge_sides[e]) >= 0;
+      if (inside) split_cell(cells, c, side, plane, {FaceOrigin::Kind::cut_plane, static_cast<int>(k)});
+    }
+  }
+
+  // 3. Which faces the cut covers. A face made by a triangle's plane inside its prism is covered
+  // by construction; any other face is covered when it lies in the plane of a triangle (parallel,
+  // its centre on the plane) and its centre lies in that triangle.
+  for (ConvexCell& cell : cells)
+    for (CellFace& face : cell.faces) {
+      if (face.origin.kind == FaceOrigin::Kind::cut_plane) {
+        face.covered = true;
+        continue;
+      }
+      const Eigen::Vector3d a = polygon_area_vector(face.polygon);
+      if (a.norm() == 0.0) continue;
+      const Eigen::Vector3d normal = a.normalized();
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (const Eigen::Vector3d& x : face.polygon) centre += x;
+      centre /= static_cast<double>(face.polygon.size());
+      for (std::size_t k = 0; k < triangles.size() && !face.covered; ++k) {
+        const Eigen::Vector3d& n = unit_normals[k];
+        if (std::abs(std::abs(n.dot(normal)) - 1.0) > 1e-9) continue;
+        if (std::abs(n.dot(centre - triangles[k].corners[0])) > tolerance) continue;
+        face.covered = in_triangle(centre, triangles[k], n);
+      }
+    }
+
+  // 4. Pieces: cells glued through uncovered faces (a face and its neighbour's copy agree, as
+  // both are decided from the same plane; a face is glued if either copy is uncovered, so that
+  // a round-off disagreement can only merge, never tear the material).
+  const int n_cells = static_cast<int>(cells.size());
+  std::vector<int> parent(n_cells);
+  std::iota(parent.begin(), parent.end(), 0);
+  bool cut_inside = false, cut_on_face = false;
+  for (int c = 0; c < n_cells; ++c)
+    for (const CellFace& face : cells[c].faces) {
+      if (face.neighbour < 0) {
+        cut_on_face = cut_on_face || face.covered;
+        continue;
+      }
+      if (face.covered) {
+        cut_inside = true;
+        continue;
+      }
+      parent[find_root(parent, c)] = find_root(parent, face.neighbour);
+    }
+  result.cell_piece.assign(n_cells, -1);
+  std::vector<int> root_piece(n_cells, -1);
+  for (int c = 0; c < n_cells; ++c) {
+    const int r = find_root(parent, c);
+    if (root_piece[r] < 0) {
+      root_piece[r] = static_cast<int>(result.pieces.size());
+      result.pieces.emplace_back();
+    }
+    const int p = root_piece[r];
+    result.cell_piece[c] = p;
+    TetPiece& piece = result.pieces[p];
+    piece.cells.push_back(c);
+    piece.volume += convex_cell_volume(cells[c]);
+    for (const CellFace& face : cells[c].faces) {
+      const bool inner = face.neighbour >= 0;
+      if (inner && !face.covered) continue;
+      PieceBoundaryPolygon boundary{face.polygon, face.origin, face.covered};
+      piece.boundary.push_back(std::move(boundary));
+    }
+  }
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d corner = X.row(k).transpose();
+    for (int c = 0; c < n_cells; ++c) {
+      bool holds = false;
+      for (const CellFace& face : cells[c].faces)
+        holds = holds || std::find(face.polygon.begin(), face.polygon.end(), corner) != face.polygon.end();
+      std::vector<int>& list = result.corner_pieces[k];
+      if (holds && std::find(list.begin(), list.end(), result.cell_piece[c]) == list.end()) list.push_back(result.cell_piece[c]);
+    }
+    std::sort(result.corner_pieces[k].begin(), result.corner_pieces[k].end());
+  }
+
+  if (result.pieces.size() > 1) result.state = SurfaceCutState::completely_cut;
+  else if (cut_inside) result.state = SurfaceCutState::partially_cut;
+  else if (cut_on_face) result.state = SurfaceCutState::touched;
+  return result;
+}
+
+std::vector<int> pieces_containing(const TetPieces& pieces, const Eigen::Vector3d& x, double tolerance) {
+  std::vector<int> found;
+  for (std::size_t c = 0; c < pieces.cells.size(); ++c) {
+    bool inside = true;
+    for (const CellFace& face : pieces.cells[c].faces) {
+      if (polygon_area_vector(face.polygon).norm() == 0.0) continue;
+      inside = inside && face_plane(face, tolerance)(x) <= 0.0;
+    }
+    const int p = pieces.cell_piece[c];
+    if (inside && std::find(found.begin(), found.end(), p) == found.end()) found.push_back(p);
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+} // namespace kerf
