@@ -17,7 +17,7 @@ ConvexCell tet_cell(const Eigen::Matrix<double, 4, 3>& X) {
       if (k != f) polygon.push_back(X.row(k).transpose());
     const Eigen::Vector3d n = (polygon[1] - polygon[0]).cross(polygon[2] - polygon[0]);
     if (n.dot(X.row(f).transpose() - polygon[0]) > 0.0) std::swap(polygon[1], polygon[2]);
-    cell.faces.push_back({polygon, -1, {FaceOrigin::Kind::tet_face, f}, false});
+    cell.faces.push_back({polygon, -1, {FaceOrigin::Kind::tet_face, f}, false, 0});
   }
   return cell;
 }

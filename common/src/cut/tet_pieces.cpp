@@ -179,11 +179,12 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
   // its centre on the plane) and its centre lies in that triangle.
   for (ConvexCell& cell : cells)
     for (CellFace& face : cell.faces) {
+      const Eigen::Vector3d a = polygon_area_vector(face.polygon);
       if (face.origin.kind == FaceOrigin::Kind::cut_plane) {
         face.covered = true;
+        face.cut_side = a.dot(unit_normals[static_cast<std::size_t>(face.origin.index)]) < 0.0 ? 1 : -1;
         continue;
       }
-      const Eigen::Vector3d a = polygon_area_vector(face.polygon);
       if (a.norm() == 0.0) continue;
       const Eigen::Vector3d normal = a.normalized();
       Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -194,6 +195,7 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
         if (std::abs(std::abs(n.dot(normal)) - 1.0) > 1e-9) continue;
         if (std::abs(n.dot(centre - triangles[k].corners[0])) > tolerance) continue;
         face.covered = in_triangle(centre, triangles[k], n);
+        if (face.covered) face.cut_side = normal.dot(n) < 0.0 ? 1 : -1;
       }
     }
 
@@ -232,7 +234,7 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
     for (const CellFace& face : cells[c].faces) {
       const bool inner = face.neighbour >= 0;
       if (inner && !face.covered) continue;
-      PieceBoundaryPolygon boundary{face.polygon, face.origin, face.covered};
+      PieceBoundaryPolygon boundary{face.polygon, face.origin, face.covered, face.cut_side};
       piece.boundary.push_back(std::move(boundary));
     }
   }

@@ -43,6 +43,7 @@ struct CellFace {
   int neighbour = -1;                   ///< index of the cell across this face, -1 on the tet's boundary
   FaceOrigin origin;                    ///< which plane the face lies in
   bool covered = false;                 ///< the cut covers this face (set once all triangles are in, tet_pieces.cpp)
+  int cut_side = 0;                     ///< when covered: +1 if the cell lies above the covering triangle, -1 below
 };
 
 /// A convex polyhedron as the closed surface of its face polygons (a "polygon soup" that
@@ -150,8 +151,8 @@ int split_cell(std::vector<ConvexCell>& cells, int c, const Value& value, const 
     // The section's corners are the points of the faces on the plane: old corners of value 0
     // and new crossings.
     split_polygon(face.polygon, value, part_above, part_below, &section);
-    if (!part_above.empty()) above.faces.push_back({part_above, face.neighbour, face.origin, face.covered});
-    if (!part_below.empty()) below.faces.push_back({part_below, face.neighbour, face.origin, face.covered});
+    if (!part_above.empty()) above.faces.push_back({part_above, face.neighbour, face.origin, face.covered, face.cut_side});
+    if (!part_below.empty()) below.faces.push_back({part_below, face.neighbour, face.origin, face.covered, face.cut_side});
     // The neighbour's face towards c is this face walked backwards: split it the same way.
     if (face.neighbour < 0) continue;
     std::vector<CellFace>& theirs = cells[face.neighbour].faces;
@@ -161,7 +162,7 @@ int split_cell(std::vector<ConvexCell>& cells, int c, const Value& value, const 
       if (part_above.empty()) {
         theirs[k].neighbour = b;
       } else if (!part_below.empty()) {
-        CellFace lower{part_below, b, theirs[k].origin, theirs[k].covered};
+        CellFace lower{part_below, b, theirs[k].origin, theirs[k].covered, theirs[k].cut_side};
         theirs[k].polygon = part_above;
         theirs.push_back(std::move(lower));
       }
@@ -169,9 +170,9 @@ int split_cell(std::vector<ConvexCell>& cells, int c, const Value& value, const 
     }
   }
   order_convex_polygon(section, plane.normal);
-  below.faces.push_back({section, c, origin, false});
+  below.faces.push_back({section, c, origin, false, 0});
   std::reverse(section.begin(), section.end());
-  above.faces.push_back({section, b, origin, false});
+  above.faces.push_back({section, b, origin, false, 0});
   cells[c] = std::move(above);
   cells.push_back(std::move(below));
   return b;

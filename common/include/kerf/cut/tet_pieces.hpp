@@ -34,6 +34,9 @@ struct PieceBoundaryPolygon {
   std::vector<Eigen::Vector3d> polygon; ///< convex, corners counter-clockwise seen from outside the piece
   FaceOrigin origin;                    ///< tet_face (index = the face) or cut_plane (index = the CutTriangle's position)
   bool on_cut = false;                  ///< covered by a cut triangle (origin may also be a tet face: a cut along a face)
+  /// For a polygon on the cut: +1 if the piece lies above the covering triangle (on the side
+  /// its normal points to, H = +1), -1 below; 0 for a polygon not on the cut.
+  int cut_side = 0;
 };
 
 /// One piece: a connected part of the tet minus the cut surfaces.

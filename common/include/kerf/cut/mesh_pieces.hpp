@@ -1,0 +1,58 @@
+/// @file mesh_pieces.hpp
+/// @brief Every tet of a mesh cut into its pieces by the cut surfaces, and which pieces of neighbouring tets the material joins.
+#pragma once
+
+#include "kerf/cut/cut_surfaces.hpp"
+#include "kerf/cut/tet_pieces.hpp"
+#include "kerf/mesh/tet_mesh.hpp"
+#include "kerf/mesh/tet_neighbours.hpp"
+
+#include <array>
+#include <vector>
+
+namespace kerf {
+
+/// Two pieces of neighbouring tets that touch through their shared face where no cut lies.
+struct PieceGlue {
+  int piece_a = 0; ///< the piece of the tet itself
+  int piece_b = 0; ///< the piece of the tet across the face
+};
+
+/// The mesh cut into pieces.
+///
+/// A tet that no cut triangle meets is one whole piece (piece 0) and has no entry. Across a face
+/// between two such tets the material is whole. Across a face of a tet with an entry, the
+/// pieces on either side are joined where their polygons on the face overlap outside the cut:
+/// so a cut lying exactly in a mesh face separates the two tets, although neither is cut.
+struct MeshPieces {
+  TetNeighbours neighbours;             ///< the mesh's face and node adjacency
+  std::vector<int> entry;               ///< #T: index into `tets`, -1 for a tet no cut triangle meets
+  std::vector<int> entry_tet;           ///< the tet of each entry
+  std::vector<TetPieces> tets;          ///< the pieces of each tet with an entry
+  /// Per entry and face (opposite corner a): the glued pairs across it, piece_a of this tet,
+  /// piece_b of the tet across (empty on the boundary). Between two entries, each holds the
+  /// face's pairs from its own side.
+  std::vector<std::array<std::vector<PieceGlue>, 4>> glues;
+  std::array<int, 4> state_counts{};    ///< tets in each SurfaceCutState (uncut ones included)
+
+  /// The number of pieces of tet t (1 for a tet without an entry).
+  int num_pieces(Eigen::Index t) const {
+    const int e = entry[static_cast<std::size_t>(t)];
+    return e < 0 ? 1 : tets[static_cast<std::size_t>(e)].num_pieces();
+  }
+  /// The cut state of tet t.
+  SurfaceCutState state(Eigen::Index t) const {
+    const int e = entry[static_cast<std::size_t>(t)];
+    return e < 0 ? SurfaceCutState::uncut : tets[static_cast<std::size_t>(e)].state;
+  }
+  int count(SurfaceCutState s) const { return state_counts[static_cast<std::size_t>(s)]; }
+  /// The glued piece pairs across face a of tet t: (piece of t, piece of the tet across).
+  /// For a face with no entry on either side, the one pair (0, 0).
+  std::vector<PieceGlue> glued_across(Eigen::Index t, int a) const;
+};
+
+/// Cuts every tet of `mesh` (its four corners; Tet10 edges are straight) by `cuts`, and joins
+/// the pieces of neighbouring tets.
+MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts);
+
+} // namespace kerf
