@@ -216,6 +216,9 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
         cut_inside = true;
         continue;
       }
+      // A face of round-off area (below (1e-12 d)^2) is two cells touching along a line, as
+      // where a kinked cut's two planes meet: no material joins them there.
+      if (polygon_area_vector(face.polygon).norm() <= tolerance * tolerance) continue;
       parent[find_root(parent, c)] = find_root(parent, face.neighbour);
     }
   result.cell_piece.assign(n_cells, -1);

@@ -124,8 +124,12 @@ void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Value& val
       record(crossing);
     }
   }
-  if (above.size() < 3) above.clear();
-  if (below.size() < 3) below.clear();
+  // A part needs a corner strictly on its side: otherwise all its points lie on the plane,
+  // in a line (the polygon only touches the plane), and it has no area.
+  const bool any_above = std::any_of(s.begin(), s.end(), [](double v) { return v > 0.0; });
+  const bool any_below = std::any_of(s.begin(), s.end(), [](double v) { return v < 0.0; });
+  if (above.size() < 3 || !any_above) above.clear();
+  if (below.size() < 3 || !any_below) below.clear();
 }
 
 /// Orders the corners of a convex polygon that lies in a plane with normal n counter-clockwise

@@ -1,0 +1,133 @@
+/// @file cut_xfem_model.hpp
+/// @brief Tet4 and Tet10 XFEM with triangle-mesh cuts: every piece of a cut tet integrated as its own "phantom" element,
+///        linear and corotational, with a rotation per quadrature point (Paper 000 eqs. 31-40 on the pieces).
+#pragma once
+
+#include "kerf/corotation/quasi_static_model.hpp"
+#include "kerf/cut/mesh_pieces.hpp"
+#include "kerf/fem/dof_map.hpp"
+#include "kerf/fem/linear_material.hpp"
+#include "kerf/quadrature/piece_quadrature_rule.hpp"
+#include "kerf/solve/linear_solver.hpp"
+#include "kerf/xfem/surface_enrichment.hpp"
+
+#include <Eigen/Core>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace kerf {
+
+/// The rule for piece `piece` of a cut tet with corners X, exact to `degree` on that piece.
+using PieceRuleFunction = std::function<PieceQuadratureRule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces,
+                                                             int piece, int degree)>;
+
+/// The integrand degrees on one piece, where every enrichment is constant (notes 4.4): the
+/// stiffness B^T C B is of degree 0 on a Tet4 and 2 on a Tet10, the body force N b of degree 1
+/// and 2. One rule of degree 2 p - ... the larger serves both: 1 for Tet4, 2 for Tet10.
+inline int stiffness_and_load_degree(int order) { return order == 1 ? 1 : 2; }
+
+/// A Tet4 or Tet10 mesh cut by triangle-mesh cuts, enriched on the one-ring.
+///
+/// The unknowns are [u_1 .. u_N, a_1 .. a_M]: three displacements per node, then three per
+/// enrichment (surface_enrichment.hpp), numbered as DOF nodes 0 .. N + M - 1 as in chapter 3.
+///
+/// The one idea. On piece p of tet t every enrichment is constant, so the field there is an
+/// ordinary Tet4 or Tet10 field with nodal values
+///
+///   u_p,a = u_a + a_k   where k = the enrichment of node a active on p (none: u_p,a = u_a),
+///
+/// the piece's "phantom" element. Written as u_p = T_p u_e with a 0/1 matrix T_p (chapter 3's
+/// side operator, grown to several enrichments per node), everything the element does is the
+/// ordinary element's on each piece, integrated over the piece only:
+///
+///   K^X_e = sum_p T_p^T (int_p B^T C B) T_p,   f_e = sum_p T_p^T (int_p N^T b),
+///
+/// and corotation takes the rotation of the phantom element's deformation gradient at every
+/// quadrature point of the piece (eqs. 31-40 with u_p for u). A Tet4 piece has constant B and
+/// one rotation (the weights' sum is all that matters); a Tet10 piece needs a rule of degree 2.
+/// Tets that no enrichment reaches are chapter 1's and 2's elements, integrated with their own
+/// rules (a tet that is cut, but whose nodes the rule of surface_enrichment.hpp leaves
+/// unenriched, is continuous across the cut: the cut cannot open there, Koschier section 8).
+class CutXfemModel : public QuasiStaticModel {
+public:
+  /// @param mesh       Tet4 or Tet10 mesh, straight-edged (kept by reference)
+  /// @param material   the material
+  /// @param pieces     cut_mesh_into_pieces(mesh, cuts) (kept by reference)
+  /// @param enrichment make_surface_enrichment(mesh, pieces) (kept by reference)
+  /// @param rule       the quadrature rule of each piece of every tet that an enrichment splits
+  CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
+               const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule);
+
+  Eigen::Index num_dof_nodes() const override { return mesh_.num_nodes() + enrichment_.num_enrichments(); }
+  const TetMatrix& assembly_slots() const override { return slots_; }
+  CorotationStatistics assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const override;
+  double position_force_norm() const override { return position_force_norm_; }
+
+  /// The linear XFEM stiffness K^X added into `assembler`, lifting into rhs_free.
+  void assemble_linear_stiffness(SparseAssembler& assembler, Eigen::VectorXd& rhs_free) const;
+  /// The body-force load sum_p T_p^T int_p N^T rho g (3 num_dof_nodes()).
+  Eigen::VectorXd gravity_load(double density, const Eigen::Vector3d& g) const;
+  /// The displacement at x (m) in tet t, on the piece that holds x (the first, if x lies on the
+  /// cut); NaN if x is not in tet t.
+  Eigen::Vector3d displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const;
+  /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
+  Eigen::MatrixX3d phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const;
+
+  const TetMesh& mesh() const { return mesh_; }
+  const MeshPieces& pieces() const { return pieces_; }
+  const SurfaceEnrichment& enrichment() const { return enrichment_; }
+  /// Whether tet t is integrated piece by piece (an enrichment acts in it and it has pieces).
+  bool split(Eigen::Index t) const { return !piece_data_[static_cast<std::size_t>(t)].empty(); }
+  /// The total number of quadrature points on the pieces of split tets.
+  Eigen::Index num_piece_points() const;
+
+private:
+  // One quadrature point of a piece: the physical shape gradients and values there and the weight.
+  // Fixed at the Tet10's size, a Tet4 uses the first 4 rows: no allocation per point.
+  struct Point {
+    Eigen::Matrix<double, 10, 3> G = Eigen::Matrix<double, 10, 3>::Zero(); // physical gradients, n rows used
+    Eigen::Matrix<double, 10, 1> N = Eigen::Matrix<double, 10, 1>::Zero(); // shape values, n used
+    double weight = 0.0;                                                    // m^3
+  };
+  // One piece of a split tet: which element slot each node's phantom value takes its enrichment
+  // from (-1: none), and its points.
+  struct Piece {
+    std::vector<int> enrichment_slot; // n entries: slot index in the element row (>= n), or -1
+    std::vector<Point> points;
+  };
+  // What tet t integrates: its split pieces, or the whole tet as one piece.
+  std::span<const Piece> integrated_pieces(Eigen::Index t) const;
+  // One tet's forces (and tangent): linear (corotated false, R = I) or corotated.
+  template <int n>
+  void assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                    bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                    CorotationStatistics& stats) const;
+
+  const TetMesh& mesh_;
+  LinearMaterial material_;
+  const MeshPieces& pieces_;
+  const SurfaceEnrichment& enrichment_;
+  TetMatrix slots_;
+  std::vector<std::vector<Piece>> piece_data_; // per tet; empty for tets integrated whole
+  std::vector<Piece> whole_;                    // per tet integrated whole: its own rule (filled for all tets)
+  double position_force_norm_ = 0.0;
+};
+
+/// The DofMap of [u; a]: the Dirichlet conditions on the mesh's nodes, and a_i^k = 0 for every
+/// enrichment of a gripped node (chapter 3's make_xfem_dof_map says why: the clamp holds the
+/// tissue on every side of the cut at the node).
+DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions);
+
+/// Linear XFEM in one call: assembles K^X, lifts, factorises and solves.
+/// @param f_ext loads on all 3 num_dof_nodes() DOFs (e.g. gravity_load)
+/// @return all DOFs [u; a]
+Eigen::VectorXd solve_linear_cut_xfem(const CutXfemModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
+                                      const SolverSettings& solver_settings);
+
+/// The sub-tetrahedra rule: a Gauss rule of `degree` on every tet of every convex cell of the
+/// piece (Paper 000 section 5.2, Paper 003). Exact for polynomials of that degree on any piece.
+PieceQuadratureRule subtet_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece, int degree);
+
+} // namespace kerf

@@ -1,0 +1,328 @@
+#include "kerf/xfem/cut_xfem_model.hpp"
+
+#include "kerf/corotation/corotated_element.hpp"
+#include "kerf/fem/tet_quadrature.hpp"
+#include "kerf/fem/tet_shape_functions.hpp"
+#include "kerf/fem/sparse_assembler.hpp"
+#include "kerf/fem/tet_stiffness.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kerf {
+
+namespace {
+
+using Corners = Eigen::Matrix<double, 4, 3>;
+
+// J = [x1 - x0, x2 - x0, x3 - x0]: the straight-edged tet's map from reference coordinates.
+Eigen::Matrix3d corner_jacobian(const Corners& X) {
+  Eigen::Matrix3d J;
+  for (int c = 0; c < 3; ++c) J.col(c) = (X.row(c + 1) - X.row(0)).transpose();
+  return J;
+}
+
+} // namespace
+
+PieceQuadratureRule subtet_rule(const Corners& X, const TetPieces& pieces, int piece, int degree) {
+  (void)X;
+  const TetQuadratureRule reference = tet_quadrature_rule(degree);
+  PieceQuadratureRule rule;
+  for (const int c : pieces.pieces[static_cast<std::size_t>(piece)].cells)
+    for (const Corners& T : convex_cell_tetrahedra(pieces.cells[static_cast<std::size_t>(c)])) {
+      const Eigen::Matrix3d J = corner_jacobian(T);
+      const double det = J.determinant();
+      if (!(det > 0.0)) continue; // a flat fan tet (its face passes through the apex) holds nothing
+      for (std::size_t q = 0; q < reference.points.size(); ++q) {
+        rule.points.push_back(T.row(0).transpose() + J * reference.points[q]);
+        rule.weights.push_back(reference.weights[q] * det);
+      }
+    }
+  return rule;
+}
+
+CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
+                           const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule)
+    : mesh_(mesh), material_(material), pieces_(pieces), enrichment_(enrichment) {
+  const int n = mesh.nodes_per_tet();
+  const Eigen::Index T = mesh.num_tets();
+  const Eigen::Index N = mesh.num_nodes();
+  const TetQuadratureRule standard = tet_quadrature_rule(n == 4 ? 1 : 2);
+  const int degree = stiffness_and_load_degree(mesh.order());
+
+  // The enrichments acting in each tet, which become its extra slots.
+  std::vector<std::vector<int>> extra(static_cast<std::size_t>(T));
+  int width = n;
+  for (Eigen::Index t = 0; t < T; ++t) {
+    std::vector<int>& list = extra[static_cast<std::size_t>(t)];
+    for (const int k : enrichment.active[static_cast<std::size_t>(t)])
+      if (k >= 0) list.push_back(k);
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    width = std::max(width, n + static_cast<int>(list.size()));
+  }
+  slots_ = TetMatrix::Constant(T, width, -1);
+  piece_data_.assign(static_cast<std::size_t>(T), {});
+  whole_.assign(static_cast<std::size_t>(T), {});
+
+  double force_norm_squared = 0.0;
+  for (Eigen::Index t = 0; t < T; ++t) {
+    const std::vector<int>& list = extra[static_cast<std::size_t>(t)];
+    for (int a = 0; a < n; ++a) slots_(t, a) = mesh.tets(t, a);
+    for (std::size_t k = 0; k < list.size(); ++k) slots_(t, n + static_cast<int>(k)) = static_cast<int>(N) + list[k];
+
+    const Corners X = tet_corners(mesh, t);
+    const Eigen::Matrix3d J = corner_jacobian(X);
+    const Eigen::Matrix3d J_inverse = J.inverse();
+    const double det = J.determinant();
+    const auto point_at = [&](const Eigen::Vector3d& x, double weight) {
+      Point point;
+      const Eigen::Vector3d xi = J_inverse * (x - X.row(0).transpose());
+      point.weight = weight;
+      if (n == 4) {
+        point.N.head<4>() = tet4_shape(xi);
+        point.G.topRows<4>() = tet4_shape_gradients() * J_inverse;
+      } else {
+        point.N = tet10_shape(xi);
+        point.G = tet10_shape_gradients(xi) * J_inverse;
+      }
+      return point;
+    };
+    const auto standard_points = [&]() {
+      std::vector<Point> points;
+      for (std::size_t q = 0; q < standard.points.size(); ++q)
+        points.push_back(point_at(X.row(0).transpose() + J * standard.points[q], standard.weights[q] * std::abs(det)));
+      return points;
+    };
+
+    const std::vector<int>& active = enrichment.active[static_cast<std::size_t>(t)];
+    const int np = pieces.num_pieces(t);
+    const auto slot_of = [&](int a, int p) {
+      const int k = active.empty() ? -1 : active[static_cast<std::size_t>(a * np + p)];
+      if (k < 0) return -1;
+      return n + static_cast<int>(std::lower_bound(list.begin(), list.end(), k) - list.begin());
+    };
+    std::vector<Piece> data;
+    if (list.empty()) {
+      whole_[static_cast<std::size_t>(t)] = {std::vector<int>(static_cast<std::size_t>(n), -1), standard_points()};
+    } else if (np == 1) {
+      // One piece, the whole tet, on which some enrichment is 1: the tet's own rule.
+      Piece piece{std::vector<int>(static_cast<std::size_t>(n)), standard_points()};
+      for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, 0);
+      data.push_back(std::move(piece));
+    } else {
+      const TetPieces& tet_pieces = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
+      for (int p = 0; p < np; ++p) {
+        Piece piece;
+        piece.enrichment_slot.resize(static_cast<std::size_t>(n));
+        for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, p);
+        const PieceQuadratureRule r = rule(X, tet_pieces, p, degree);
+        for (std::size_t q = 0; q < r.points.size(); ++q) piece.points.push_back(point_at(r.points[q], r.weights[q]));
+        data.push_back(std::move(piece));
+      }
+    }
+    piece_data_[static_cast<std::size_t>(t)] = std::move(data);
+
+    // The position force |K X| of each piece's phantom element (the floor of f_int's round-off).
+    const std::span<const Piece> integrated = integrated_pieces(t);
+    Eigen::VectorXd x_e(3 * n);
+    for (int a = 0; a < n; ++a) x_e.segment<3>(3 * a) = mesh.nodes.row(mesh.tets(t, a)).transpose();
+    for (const Piece& piece : integrated) {
+      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+      for (const Point& point : piece.points) {
+        if (n == 4) {
+          Eigen::Matrix<double, 12, 12> Kq = Eigen::Matrix<double, 12, 12>::Zero();
+          add_stiffness_integrand<4>(point.G.topRows<4>(), point.weight, material.mu(), material.lambda(), Kq);
+          K += Kq;
+        } else {
+          Eigen::Matrix<double, 30, 30> Kq = Eigen::Matrix<double, 30, 30>::Zero();
+          add_stiffness_integrand<10>(point.G, point.weight, material.mu(), material.lambda(), Kq);
+          K += Kq;
+        }
+      }
+      force_norm_squared += (K * x_e).squaredNorm();
+    }
+  }
+  position_force_norm_ = std::sqrt(force_norm_squared);
+}
+
+std::span<const CutXfemModel::Piece> CutXfemModel::integrated_pieces(Eigen::Index t) const {
+  const std::vector<Piece>& split_pieces = piece_data_[static_cast<std::size_t>(t)];
+  if (!split_pieces.empty()) return split_pieces;
+  return {&whole_[static_cast<std::size_t>(t)], 1};
+}
+
+Eigen::Index CutXfemModel::num_piece_points() const {
+  Eigen::Index count = 0;
+  for (const std::vector<Piece>& list : piece_data_)
+    for (const Piece& piece : list) count += static_cast<Eigen::Index>(piece.points.size());
+  return count;
+}
+
+template <int n>
+void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                                CorotationStatistics& stats) const {
+  constexpr int m3 = 3 * n;
+  const std::span<const Piece> pieces = integrated_pieces(t);
+
+  int slots = n;
+  while (slots < slots_.cols() && slots_(t, slots) >= 0) ++slots;
+  Eigen::VectorXd f_e = Eigen::VectorXd::Zero(3 * slots);
+  Eigen::MatrixXd K_e;
+  if (assembler) K_e = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
+
+  Eigen::Matrix<double, n, 3> X;
+  for (int a = 0; a < n; ++a) X.row(a) = mesh_.nodes.row(mesh_.tets(t, a));
+  const double mu = material_.mu(), lambda = material_.lambda();
+  for (const Piece& piece : pieces) {
+    // The phantom element's nodal displacements u_p = T_p u_e.
+    Eigen::Matrix<double, n, 3> u_p;
+    for (int a = 0; a < n; ++a) {
+      Eigen::Vector3d value = u.segment<3>(3 * mesh_.tets(t, a));
+      const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
+      if (s >= 0) value += u.segment<3>(3 * slots_(t, s));
+      u_p.row(a) = value.transpose();
+    }
+    Eigen::Matrix<double, m3, 1> f_p = Eigen::Matrix<double, m3, 1>::Zero();
+    Eigen::Matrix<double, m3, m3> K_p = Eigen::Matrix<double, m3, m3>::Zero();
+    const auto add_point = [&](const Eigen::Matrix<double, n, 3>& G, double weight) {
+      Eigen::Matrix<double, m3, m3> K_q = Eigen::Matrix<double, m3, m3>::Zero();
+      add_stiffness_integrand<n>(G, weight, mu, lambda, K_q);
+      if (corotated) {
+        add_corotated_point<n>(K_q, G, X, u_p, weight, mu, lambda, rotation, tangent, f_p, assembler ? &K_p : nullptr, &stats);
+      } else {
+        Eigen::Matrix<double, m3, 1> u_vector;
+        for (int a = 0; a < n; ++a) u_vector.template segment<3>(3 * a) = u_p.row(a).transpose();
+        f_p += K_q * u_vector;
+        K_p += K_q;
+      }
+    };
+    if constexpr (n == 4) {
+      // A Tet4's gradients are constant: the piece is one point with the rule's total weight.
+      double weight = 0.0;
+      for (const Point& point : piece.points) weight += point.weight;
+      if (!piece.points.empty()) add_point(piece.points.front().G.template topRows<4>(), weight);
+    } else {
+      for (const Point& point : piece.points) add_point(point.G, point.weight);
+    }
+    // Scatter with T_p: node a's row goes to u_a and, if enriched here, to its enrichment.
+    for (int a = 0; a < n; ++a) {
+      const int sa = piece.enrichment_slot[static_cast<std::size_t>(a)];
+      f_e.segment<3>(3 * a) += f_p.template segment<3>(3 * a);
+      if (sa >= 0) f_e.segment<3>(3 * sa) += f_p.template segment<3>(3 * a);
+      if (!assembler) continue;
+      for (int b = 0; b < n; ++b) {
+        const int sb = piece.enrichment_slot[static_cast<std::size_t>(b)];
+        const Eigen::Matrix3d block = K_p.template block<3, 3>(3 * a, 3 * b);
+        K_e.block<3, 3>(3 * a, 3 * b) += block;
+        if (sa >= 0) K_e.block<3, 3>(3 * sa, 3 * b) += block;
+        if (sb >= 0) K_e.block<3, 3>(3 * a, 3 * sb) += block;
+        if (sa >= 0 && sb >= 0) K_e.block<3, 3>(3 * sa, 3 * sb) += block;
+      }
+    }
+  }
+  for (int s = 0; s < slots; ++s) f_int.segment<3>(3 * slots_(t, s)) += f_e.segment<3>(3 * s);
+  if (assembler) assembler->add_element_matrix(t, K_e, *rhs_free);
+}
+
+CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                            Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
+  CorotationStatistics stats;
+  f_int = Eigen::VectorXd::Zero(3 * num_dof_nodes());
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    if (mesh_.order() == 1) assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
+    else assemble_tet<10>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
+  }
+  return stats;
+}
+
+void CutXfemModel::assemble_linear_stiffness(SparseAssembler& assembler, Eigen::VectorXd& rhs_free) const {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3 * num_dof_nodes());
+  Eigen::VectorXd f_int = zero;
+  CorotationStatistics unused;
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    if (mesh_.order() == 1)
+      assemble_tet<4>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused);
+    else
+      assemble_tet<10>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused);
+  }
+}
+
+Eigen::VectorXd CutXfemModel::gravity_load(double density, const Eigen::Vector3d& g) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * num_dof_nodes());
+  const int n = mesh_.nodes_per_tet();
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    for (const Piece& piece : integrated_pieces(t))
+      for (const Point& point : piece.points)
+        for (int a = 0; a < n; ++a) {
+          const Eigen::Vector3d load = point.weight * density * point.N[a] * g;
+          f.segment<3>(3 * mesh_.tets(t, a)) += load;
+          const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
+          if (s >= 0) f.segment<3>(3 * slots_(t, s)) += load;
+        }
+  }
+  return f;
+}
+
+Eigen::MatrixX3d CutXfemModel::phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const {
+  const int n = mesh_.nodes_per_tet();
+  const Piece& piece = split(t) ? piece_data_[static_cast<std::size_t>(t)][static_cast<std::size_t>(p)] : whole_[static_cast<std::size_t>(t)];
+  Eigen::MatrixX3d u_p(n, 3);
+  for (int a = 0; a < n; ++a) {
+    Eigen::Vector3d value = u.segment<3>(3 * mesh_.tets(t, a));
+    const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
+    if (s >= 0) value += u.segment<3>(3 * slots_(t, s));
+    u_p.row(a) = value.transpose();
+  }
+  return u_p;
+}
+
+Eigen::Vector3d CutXfemModel::displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const {
+  const Corners X = tet_corners(mesh_, t);
+  const Eigen::Vector3d xi = corner_jacobian(X).inverse() * (x - X.row(0).transpose());
+  const double diameter = (X.row(1) - X.row(0)).norm() + (X.row(2) - X.row(0)).norm() + (X.row(3) - X.row(0)).norm();
+  int p = 0;
+  if (split(t) && pieces_.num_pieces(t) > 1) {
+    const TetPieces& tp = pieces_.tets[static_cast<std::size_t>(pieces_.entry[static_cast<std::size_t>(t)])];
+    const std::vector<int> found = pieces_containing(tp, x, 1e-12 * diameter);
+    if (found.empty()) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    p = found.front();
+  }
+  const Eigen::MatrixX3d u_p = phantom_displacements(u, t, p);
+  if (mesh_.order() == 1) return (tet4_shape(xi).transpose() * u_p).transpose();
+  return (tet10_shape(xi).transpose() * u_p).transpose();
+}
+
+DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions) {
+  const SurfaceEnrichment& enrichment = model.enrichment();
+  const auto num_nodes = static_cast<int>(model.mesh().num_nodes());
+  DirichletNodes enrichments_of_gripped;
+  for (const DirichletNodes& condition : conditions)
+    for (const int v : condition.nodes) {
+      if (v >= num_nodes) continue;
+      for (int k = enrichment.first_enrichment[static_cast<std::size_t>(v)]; k < enrichment.first_enrichment[static_cast<std::size_t>(v) + 1]; ++k)
+        enrichments_of_gripped.nodes.push_back(num_nodes + k);
+    }
+  // First, so that a condition the caller puts on an enrichment itself has the last word.
+  std::vector<DirichletNodes> with_enrichments{enrichments_of_gripped};
+  with_enrichments.insert(with_enrichments.end(), conditions.begin(), conditions.end());
+  return make_dof_map(model.num_dof_nodes(), with_enrichments);
+}
+
+Eigen::VectorXd solve_linear_cut_xfem(const CutXfemModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
+                                      const SolverSettings& solver_settings) {
+  SparseAssembler assembler(model.assembly_slots(), dofs);
+  Eigen::VectorXd rhs = dofs.restrict_to_free(f_ext);
+  model.assemble_linear_stiffness(assembler, rhs);
+  auto solver = make_linear_solver(solver_settings);
+  solver->analyze_pattern(assembler.matrix());
+  solver->factorize(assembler.matrix());
+  Eigen::VectorXd u_free = Eigen::VectorXd::Zero(dofs.num_free);
+  solver->solve(rhs, u_free);
+  return dofs.expand(u_free);
+}
+
+} // namespace kerf
