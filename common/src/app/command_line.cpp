@@ -19,6 +19,7 @@ CommandLine parse_command_line(int argc, const char* const* argv) {
     if (arg == "--scene") options.scene = value();
     else if (arg == "--probes") options.probes_in = value();
     else if (arg == "--probes-out") options.probes_out = value();
+    else if (arg == "--moments-out") options.moments_out = value();
     else if (arg == "--out") options.out_dir = value();
     else if (arg == "--quiet") options.quiet = true;
     else if (arg == "--help" || arg == "-h") options.help = true;
@@ -30,9 +31,11 @@ CommandLine parse_command_line(int argc, const char* const* argv) {
 }
 
 int run_guarded(int argc, const char* const* argv, const std::string& program, const std::string& usage,
-                const std::function<void(const CommandLine&)>& body) {
+                const std::function<void(const CommandLine&)>& body, const CommandLineFeatures& taught) {
   try {
     const CommandLine options = parse_command_line(argc, argv);
+    if (options.moments_out && !taught.moments_out)
+      throw InputError("command line", "--moments-out", "the moments of cut pieces are taught from chapter 4 on (04_cut_quadrature)");
     if (options.help) {
       std::cout << usage;
       return 0;

@@ -74,10 +74,17 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts) {
   result.neighbours = tet_neighbours(mesh);
   const Eigen::Index T = mesh.num_tets();
   result.entry.assign(static_cast<std::size_t>(T), -1);
+  result.tets_per_surface.assign(static_cast<std::size_t>(cuts.num_surfaces()), 0);
+  std::vector<Eigen::Index> last_tet(static_cast<std::size_t>(cuts.num_surfaces()), -1);
   for (Eigen::Index t = 0; t < T; ++t) {
     const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
     const std::vector<CutTriangle> triangles = cuts.triangles_meeting_tet(X);
     if (triangles.empty()) continue;
+    for (const CutTriangle& triangle : triangles) {
+      const auto s = static_cast<std::size_t>(triangle.surface);
+      if (last_tet[s] != t) ++result.tets_per_surface[s];
+      last_tet[s] = t;
+    }
     result.entry[static_cast<std::size_t>(t)] = static_cast<int>(result.tets.size());
     result.entry_tet.push_back(static_cast<int>(t));
     result.tets.push_back(split_tet_by_triangles(X, triangles));

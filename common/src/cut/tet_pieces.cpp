@@ -253,6 +253,7 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
     std::sort(result.corner_pieces[k].begin(), result.corner_pieces[k].end());
   }
 
+  result.triangles = triangles;
   if (result.pieces.size() > 1) result.state = SurfaceCutState::completely_cut;
   else if (cut_inside) result.state = SurfaceCutState::partially_cut;
   else if (cut_on_face) result.state = SurfaceCutState::touched;

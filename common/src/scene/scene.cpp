@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -347,6 +348,21 @@ QuasiStaticSpec read_quasi_static(const ObjectReader& r) {
   return spec;
 }
 
+/// "quadrature": the rule for the pieces of cut elements (chapter 4 on).
+QuadratureSpec read_quadrature(const ObjectReader& r) {
+  QuadratureSpec spec;
+  if (!r.has("quadrature")) return spec;
+  spec.given = true;
+  ObjectReader q(r.at("quadrature"), "quadrature", r.file());
+  q.allow_only({"rule"});
+  spec.rule = q.text("rule", spec.rule);
+  const std::vector<std::string> rules{"exact", "subtets", "moment_fitting", "volume_ratio", "lattice", "regular"};
+  if (std::find(rules.begin(), rules.end(), spec.rule) == rules.end())
+    q.fail("quadrature.rule", "expected \"exact\", \"subtets\", \"moment_fitting\", \"volume_ratio\", \"lattice\" or "
+                              "\"regular\", got \"" + spec.rule + "\"");
+  return spec;
+}
+
 /// "solver": which linear solver, and how hard an iterative one works.
 SolverSettings read_solver(const ObjectReader& r) {
   SolverSettings solver;
@@ -396,8 +412,8 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
     throw InputError(file, "JSON", what);
   }
   ObjectReader r(document, "", file);
-  r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "time", "output", "solver",
-                "quasi_static"});
+  r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "quadrature", "time", "output",
+                "solver", "quasi_static"});
 
   Scene scene;
   scene.source = source;
@@ -411,6 +427,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.gravity = r.vector<3>("gravity", Eigen::Vector3d::Zero());
   scene.traction = read_tractions(r);
   scene.cuts = read_cuts(r, base);
+  scene.quadrature = read_quadrature(r);
   scene.time = read_time(r);
   scene.output_every = read_output_every(r);
   scene.quasi_static = read_quasi_static(r);
@@ -432,6 +449,13 @@ void require_features(const Scene& scene, const SceneFeatures& taught) {
     throw InputError(file, "model", "\"corotational\" is taught from chapter 2 on (02_corotation)");
   if (!scene.cuts.empty() && !taught.cuts)
     throw InputError(file, "cuts", "cuts are taught from chapter 3 on (03_xfem_heaviside)");
+  if (scene.quadrature.given && !taught.cut_quadrature)
+    throw InputError(file, "quadrature", "quadrature rules for cut elements are taught from chapter 4 on (04_cut_quadrature)");
+  if (!taught.cut_quadrature)
+    for (std::size_t i = 0; i < scene.cuts.size(); ++i)
+      if (!scene.cuts[i].is_rectangle)
+        throw InputError(file, "cuts[" + std::to_string(i) + "].surface",
+                         "triangle-mesh cuts are taught from chapter 4 on (04_cut_quadrature)");
   if (scene.time.integrator != "static" && !taught.dynamics)
     throw InputError(file, "time.integrator", "\"" + scene.time.integrator + "\" is taught from chapter 6 on (06_newmark)");
 }

@@ -3,6 +3,7 @@
 #include "kerf/corotation/corotated_element.hpp"
 #include "kerf/fem/tet_quadrature.hpp"
 #include "kerf/fem/tet_shape_functions.hpp"
+#include "kerf/fem/rigid_motion_check.hpp"
 #include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/fem/tet_stiffness.hpp"
 
@@ -280,6 +281,77 @@ Eigen::MatrixX3d CutXfemModel::phantom_displacements(const Eigen::VectorXd& u, E
   return u_p;
 }
 
+Eigen::VectorXd CutXfemModel::shape_values(Eigen::Index t, const Eigen::Vector3d& x) const {
+  const Corners X = tet_corners(mesh_, t);
+  const Eigen::Vector3d xi = corner_jacobian(X).inverse() * (x - X.row(0).transpose());
+  if (mesh_.order() == 1) return tet4_shape(xi);
+  return tet10_shape(xi);
+}
+
+int CutXfemModel::phantom_node(Eigen::Index t, int p, int a) const {
+  const Piece& piece = integrated_pieces(t)[static_cast<std::size_t>(p)];
+  const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
+  return s >= 0 ? slots_(t, s) : mesh_.tets(t, a);
+}
+
+PhantomMesh CutXfemModel::phantom_mesh() const {
+  const Eigen::Index N = mesh_.num_nodes();
+  PhantomMesh phantom;
+  phantom.mesh.nodes.resize(num_dof_nodes(), 3);
+  phantom.mesh.nodes.topRows(N) = mesh_.nodes;
+  for (Eigen::Index k = 0; k < enrichment_.num_enrichments(); ++k)
+    phantom.mesh.nodes.row(N + k) = mesh_.nodes.row(enrichment_.enrichment_node[static_cast<std::size_t>(k)]);
+  std::vector<Eigen::Vector4i> tets;
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    const std::span<const Piece> list = integrated_pieces(t);
+    const Corners X = tet_corners(mesh_, t);
+    const int e = pieces_.entry[static_cast<std::size_t>(t)];
+    for (std::size_t p = 0; p < list.size(); ++p) {
+      Eigen::Vector4i corners;
+      for (int a = 0; a < 4; ++a) corners[a] = phantom_node(t, static_cast<int>(p), a);
+      double volume = 0.0;
+      for (const Point& point : list[p].points) volume += point.weight;
+      // A point of the piece: the centre of its largest cell, or of the tet.
+      Eigen::Vector3d point = X.colwise().mean().transpose();
+      if (split(t) && e >= 0 && list.size() > 1) {
+        const TetPieces& tp = pieces_.tets[static_cast<std::size_t>(e)];
+        double largest = -1.0;
+        for (const int c : tp.pieces[p].cells) {
+          const double v = convex_cell_volume(tp.cells[static_cast<std::size_t>(c)]);
+          if (v <= largest) continue;
+          largest = v;
+          Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+          int count = 0;
+          for (const CellFace& face : tp.cells[static_cast<std::size_t>(c)].faces)
+            for (const Eigen::Vector3d& y : face.polygon) sum += y, ++count;
+          point = sum / count;
+        }
+      }
+      tets.push_back(corners);
+      phantom.piece_volume.push_back(volume);
+      phantom.piece_point.push_back(point);
+    }
+  }
+  phantom.mesh.tets.resize(static_cast<Eigen::Index>(tets.size()), 4);
+  for (std::size_t i = 0; i < tets.size(); ++i) phantom.mesh.tets.row(static_cast<Eigen::Index>(i)) = tets[i].transpose();
+  return phantom;
+}
+
+std::vector<UnheldPiece> cut_xfem_unheld_pieces(const CutXfemModel& model, const DofMap& dofs) {
+  const PhantomMesh phantom = model.phantom_mesh();
+  // The value u_i + a_k of a phantom node is held when both are prescribed: it counts as free
+  // when u_i is (only "free or not" matters to the check).
+  DofMap phantom_dofs = dofs;
+  const Eigen::Index N = model.mesh().num_nodes();
+  for (Eigen::Index k = 0; k < model.enrichment().num_enrichments(); ++k) {
+    const int node = model.enrichment().enrichment_node[static_cast<std::size_t>(k)];
+    for (int p = 0; p < 3; ++p)
+      if (dofs.free_index[static_cast<std::size_t>(3 * node + p)] >= 0)
+        phantom_dofs.free_index[static_cast<std::size_t>(3 * (N + k) + p)] = 0;
+  }
+  return unheld_pieces(phantom.mesh, phantom_dofs, phantom.piece_volume, phantom.piece_point);
+}
+
 Eigen::Vector3d CutXfemModel::displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const {
   const Corners X = tet_corners(mesh_, t);
   const Eigen::Vector3d xi = corner_jacobian(X).inverse() * (x - X.row(0).transpose());
@@ -314,6 +386,8 @@ DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<Dirich
 
 Eigen::VectorXd solve_linear_cut_xfem(const CutXfemModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
                                       const SolverSettings& solver_settings) {
+  if (const std::vector<UnheldPiece> unheld = cut_xfem_unheld_pieces(model, dofs); !unheld.empty())
+    throw std::runtime_error("the XFEM stiffness is singular: " + describe_unheld_pieces(unheld));
   SparseAssembler assembler(model.assembly_slots(), dofs);
   Eigen::VectorXd rhs = dofs.restrict_to_free(f_ext);
   model.assemble_linear_stiffness(assembler, rhs);

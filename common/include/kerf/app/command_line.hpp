@@ -14,6 +14,7 @@ struct CommandLine {
   std::optional<std::filesystem::path> scene;       ///< --scene FILE.json; none: the chapter's demo
   std::optional<std::filesystem::path> probes_in;   ///< --probes IN.csv
   std::optional<std::filesystem::path> probes_out;  ///< --probes-out OUT.csv
+  std::optional<std::filesystem::path> moments_out; ///< --moments-out FILE (chapter 4 on): the moments of every cut piece
   std::filesystem::path out_dir = "output";         ///< --out DIR: where VTK files and CSV go
   bool quiet = false;                               ///< --quiet: no progress lines
   bool help = false;                                ///< --help
@@ -23,11 +24,16 @@ struct CommandLine {
 /// reverse) are InputErrors with the file name "command line".
 CommandLine parse_command_line(int argc, const char* const* argv);
 
+/// The options that arrive with later chapters; a program that has not taught one refuses it.
+struct CommandLineFeatures {
+  bool moments_out = false; ///< --moments-out (chapter 4 on)
+};
+
 /// Runs `body` and turns every exception into one line on stderr and a non-zero exit status:
 /// 2 for bad input (InputError), 3 for a numerical failure or anything else. `--help` prints
 /// `usage` and returns 0. Every chapter's main() is a single call to this, so the try/catch is
-/// written once, here.
+/// written once, here. An option of a later chapter than `taught` allows is an InputError.
 int run_guarded(int argc, const char* const* argv, const std::string& program, const std::string& usage,
-                const std::function<void(const CommandLine&)>& body);
+                const std::function<void(const CommandLine&)>& body, const CommandLineFeatures& taught = {});
 
 } // namespace kerf

@@ -34,6 +34,7 @@ struct MeshPieces {
   /// face's pairs from its own side.
   std::vector<std::array<std::vector<PieceGlue>, 4>> glues;
   std::array<int, 4> state_counts{};    ///< tets in each SurfaceCutState (uncut ones included)
+  std::vector<int> tets_per_surface;    ///< how many tets each cut surface meets (0: it misses the mesh)
 
   /// The number of pieces of tet t (1 for a tet without an entry).
   int num_pieces(Eigen::Index t) const {

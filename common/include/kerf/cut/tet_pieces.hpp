@@ -59,6 +59,7 @@ struct TetPieces {
   std::vector<ConvexCell> cells;         ///< the convex cells
   std::vector<int> cell_piece;           ///< #cells: the piece each cell belongs to
   std::vector<TetPiece> pieces;          ///< at least one
+  std::vector<CutTriangle> triangles;    ///< the cut triangles it was split by (FaceOrigin::index counts in this list)
   std::array<std::vector<int>, 4> corner_pieces; ///< for each corner, the pieces whose closure holds it (two or more
                                                  ///< when the cut passes through the corner), in increasing order
   int num_pieces() const { return static_cast<int>(pieces.size()); }

@@ -62,6 +62,14 @@ struct CutSpec {
   double surface_scale = 1.0; ///< what the surface file's coordinates are multiplied by (0.001 for mm)
 };
 
+/// How the pieces of cut elements are integrated (chapter 4 on): `"quadrature": {"rule": ...}`.
+struct QuadratureSpec {
+  /// "exact" (the default: moment fitting on exact polyhedral moments), "subtets",
+  /// "moment_fitting", "volume_ratio" (Tet4 only), "lattice" or "regular".
+  std::string rule = "exact";
+  bool given = false; ///< the scene has a "quadrature" field (chapters before 4 refuse it)
+};
+
 /// Time integration: "static", or "newmark" with its parameters (chapter 6 on).
 struct TimeSpec {
   std::string integrator = "static";
@@ -82,6 +90,7 @@ struct Scene {
   Eigen::Vector3d gravity{0, 0, 0};      ///< m/s^2
   std::vector<TractionSpec> traction;
   std::vector<CutSpec> cuts;
+  QuadratureSpec quadrature;
   TimeSpec time;
   int output_every = 1;                  ///< write every n-th step
   SolverSettings solver;
@@ -103,6 +112,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
 struct SceneFeatures {
   bool corotational = false;
   bool cuts = false;
+  bool cut_quadrature = false; ///< triangle-mesh cuts, several cuts, cut Tet10, the "quadrature" field (chapter 4)
   bool dynamics = false;
 };
 

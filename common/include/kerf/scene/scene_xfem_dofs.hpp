@@ -4,6 +4,7 @@
 
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/scene/scene.hpp"
+#include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 
 #include <ostream>
@@ -17,5 +18,9 @@ namespace kerf {
 /// "dirichlet" and the piece (its volume and a point in it): a static solve has no answer then,
 /// and whichever solver is chosen would either fail for the wrong reason or return garbage.
 DofMap scene_xfem_dof_map(const Scene& scene, const XfemModel& model, std::ostream* warnings);
+
+/// The same for chapter 4's body cut by triangle meshes: a_i^k = 0 for every enrichment of a
+/// gripped node (make_cut_xfem_dof_map), then the check that every piece is held.
+DofMap scene_cut_xfem_dof_map(const Scene& scene, const CutXfemModel& model, std::ostream* warnings);
 
 } // namespace kerf

@@ -10,6 +10,7 @@
 #include "kerf/quadrature/piece_quadrature_rule.hpp"
 #include "kerf/solve/linear_solver.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
+#include "kerf/xfem/xfem_model.hpp"
 
 #include <Eigen/Core>
 #include <functional>
@@ -74,6 +75,14 @@ public:
   Eigen::Vector3d displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const;
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
   Eigen::MatrixX3d phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const;
+  /// The n shape functions of tet t at the point x (m).
+  Eigen::VectorXd shape_values(Eigen::Index t, const Eigen::Vector3d& x) const;
+  /// The DOF node that gives local node a of tet t its value on piece p: the node itself, or
+  /// N + k for the enrichment k active there.
+  int phantom_node(Eigen::Index t, int p, int a) const;
+  /// The cut body as a Tet4 mesh of phantom elements, one tet per piece (Tet10: its corners),
+  /// for asking which pieces the Dirichlet conditions hold (chapter 3's PhantomMesh).
+  PhantomMesh phantom_mesh() const;
 
   const TetMesh& mesh() const { return mesh_; }
   const MeshPieces& pieces() const { return pieces_; }
@@ -120,9 +129,15 @@ private:
 /// tissue on every side of the cut at the node).
 DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions);
 
+/// The pieces of the cut body that `dofs` leaves free to move rigidly: K^X_ff is singular
+/// exactly when this is not empty (a phantom node is held when its u and its a are prescribed).
+std::vector<UnheldPiece> cut_xfem_unheld_pieces(const CutXfemModel& model, const DofMap& dofs);
+
 /// Linear XFEM in one call: assembles K^X, lifts, factorises and solves.
 /// @param f_ext loads on all 3 num_dof_nodes() DOFs (e.g. gravity_load)
 /// @return all DOFs [u; a]
+/// @throws std::runtime_error naming the piece, before any factorisation, when a piece is held
+///         by no Dirichlet condition (cut_xfem_unheld_pieces)
 Eigen::VectorXd solve_linear_cut_xfem(const CutXfemModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
                                       const SolverSettings& solver_settings);
 
