@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -289,4 +290,77 @@ TEST_CASE("random surfaces on a coarse grid, full of exact coincidences, always 
   }
   CHECK(cases > 1000);
   CHECK(split > 100);
+}
+
+namespace {
+
+// An icosphere of radius r about c: the icosahedron subdivided `levels` times, vertices pushed
+// onto the sphere, triangles facing out.
+std::vector<CutTriangle> icosphere(const Eigen::Vector3d& c, double r, int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::Vector3d> v{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::array<int, 3>> f{{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                                    {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (Eigen::Vector3d& x : v) x.normalize();
+  for (int level = 0; level < levels; ++level) {
+    std::vector<std::array<int, 3>> finer;
+    const auto middle = [&](int a, int b) {
+      v.push_back((v[static_cast<std::size_t>(a)] + v[static_cast<std::size_t>(b)]).normalized());
+      return static_cast<int>(v.size()) - 1;
+    };
+    for (const auto& [a, b, d] : f) {
+      const int ab = middle(a, b), bd = middle(b, d), da = middle(d, a);
+      finer.push_back({a, ab, da});
+      finer.push_back({b, bd, ab});
+      finer.push_back({d, da, bd});
+      finer.push_back({ab, bd, da});
+    }
+    f = finer;
+  }
+  std::vector<CutTriangle> triangles;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    const auto& [a, b, d] = f[k];
+    triangles.push_back(triangle(c + r * v[static_cast<std::size_t>(a)], c + r * v[static_cast<std::size_t>(b)],
+                                 c + r * v[static_cast<std::size_t>(d)], static_cast<int>(k)));
+  }
+  return triangles;
+}
+
+} // namespace
+
+TEST_CASE("a closed polyhedral ball cuts out of the tet exactly its intersection with the ball") {
+  // Koschier's spherical cut: the ball of radius 0.5 at the corner (0, 0, 0) of the unit tet,
+  // as an icosphere (1280 triangles; turned so that no vertex sits on the tet's faces). The
+  // independent reference: the tet clipped by every triangle's plane in turn, keeping the
+  // inside, with chapter 3's clip_tet (a convex polyhedron is the intersection of its faces'
+  // half-spaces).
+  const Corners X = unit_tet();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<CutTriangle> ball = icosphere(Eigen::Vector3d::Zero(), 0.5, 3);
+  for (CutTriangle& t : ball)
+    for (Eigen::Vector3d& x : t.corners) x = turn * x;
+  const kerf::TetPieces pieces = kerf::split_tet_by_triangles(X, ball);
+  REQUIRE(pieces.num_pieces() == 2);
+  CHECK(pieces.state == kerf::SurfaceCutState::completely_cut);
+  require_closed_pieces(pieces);
+  std::vector<Corners> inside{X};
+  for (const CutTriangle& t : ball) {
+    const Eigen::Vector3d n = (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).normalized();
+    std::vector<Corners> kept;
+    for (const Corners& sub : inside) {
+      Eigen::Vector4d lambda;
+      for (int i = 0; i < 4; ++i) lambda[i] = n.dot(sub.row(i).transpose() - t.corners[0]);
+      const kerf::ClippedTet clipped = kerf::clip_tet(sub, lambda);
+      kept.insert(kept.end(), clipped.below.begin(), clipped.below.end());
+    }
+    inside = kept;
+  }
+  double reference = 0.0;
+  for (const Corners& sub : inside) reference += std::abs(kerf::signed_tet_volume(sub));
+  const int ball_piece = pieces.corner_pieces[0].front();
+  CHECK(pieces.pieces[static_cast<std::size_t>(ball_piece)].volume == doctest::Approx(reference).epsilon(1e-12));
+  // And the polyhedral ball is close to the round one: pi r^3 / 6 within the tessellation's error.
+  CHECK(reference == doctest::Approx(M_PI * 0.125 / 6.0).epsilon(0.01));
 }

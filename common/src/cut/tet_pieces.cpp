@@ -76,12 +76,18 @@ std::vector<Eigen::Vector3d> keep_below(const std::vector<Eigen::Vector3d>& poly
   return kept;
 }
 
+// Whether a face has more than round-off area: (1e-12 d)^2. A face below it is a sliver that a
+// split left along a line (where two cut planes meet at an angle, or a plane grazes an edge):
+// its normal is noise, it bounds nothing the cell's other faces do not, and no material joins
+// two cells through it.
+bool has_area(const CellFace& face, double tolerance) {
+  return face.polygon.size() >= 3 && polygon_area_vector(face.polygon).norm() > tolerance * tolerance;
+}
+
 // Whether the closed cell and the convex polygon P (in any plane) have a point in common.
 bool cell_touches(const ConvexCell& cell, std::vector<Eigen::Vector3d> P, double tolerance) {
   for (const CellFace& face : cell.faces) {
-    if (face.polygon.size() < 3) continue;
-    const Eigen::Vector3d a = polygon_area_vector(face.polygon);
-    if (a.norm() == 0.0) continue; // a flat sliver face bounds nothing
+    if (!has_area(face, tolerance)) continue;
     P = keep_below(P, face_plane(face, tolerance));
     if (P.empty()) return false;
   }
@@ -126,6 +132,7 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) diameter = std::max(diameter, (X.row(i) - X.row(j)).norm());
   const double tolerance = 1e-12 * diameter;
+  result.diameter = diameter;
 
   std::vector<ConvexCell>& cells = result.cells;
   cells.push_back(tet_cell(X));
@@ -216,9 +223,8 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
         cut_inside = true;
         continue;
       }
-      // A face of round-off area (below (1e-12 d)^2) is two cells touching along a line, as
-      // where a kinked cut's two planes meet: no material joins them there.
-      if (polygon_area_vector(face.polygon).norm() <= tolerance * tolerance) continue;
+      if (!has_area(face, tolerance)) continue; // two cells touching along a line only
+
       parent[find_root(parent, c)] = find_root(parent, face.neighbour);
     }
   result.cell_piece.assign(n_cells, -1);
@@ -262,10 +268,11 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
 
 std::vector<int> pieces_containing(const TetPieces& pieces, const Eigen::Vector3d& x, double tolerance) {
   std::vector<int> found;
+  const double snap = 1e-12 * pieces.diameter;
   for (std::size_t c = 0; c < pieces.cells.size(); ++c) {
     bool inside = true;
     for (const CellFace& face : pieces.cells[c].faces) {
-      if (polygon_area_vector(face.polygon).norm() == 0.0) continue;
+      if (!has_area(face, snap)) continue;
       inside = inside && face_plane(face, tolerance)(x) <= 0.0;
     }
     const int p = pieces.cell_piece[c];

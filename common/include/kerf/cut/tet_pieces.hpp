@@ -56,6 +56,7 @@ struct TetPiece {
 struct TetPieces {
   SurfaceCutState state = SurfaceCutState::uncut;
   double volume = 0.0;                   ///< the tet's volume |det J| / 6 (m^3)
+  double diameter = 0.0;                 ///< its longest edge (m): the scale of its snap, 1e-12 of it
   std::vector<ConvexCell> cells;         ///< the convex cells
   std::vector<int> cell_piece;           ///< #cells: the piece each cell belongs to
   std::vector<TetPiece> pieces;          ///< at least one
