@@ -1,0 +1,23 @@
+/// @file cut_xfem_mass.hpp
+/// @brief The consistent XFEM mass of a body cut by triangle meshes, integrated on the pieces (Paper 000 eqs. 76-80, degree 4 for Tet10).
+#pragma once
+
+#include "kerf/xfem/cut_xfem_model.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace kerf {
+
+/// The consistent mass on all 3 num_dof_nodes() DOFs, no Dirichlet elimination:
+///
+///   M_e = sum_p T_p^T (rho int_p N^T N dV, times I_3) T_p,
+///
+/// the phantom elements' masses over their pieces (eqs. 77-80 with Psi in {0, 1} on each piece).
+/// N_a N_b has degree 2 on a Tet4 piece and 4 on a Tet10 piece (notes 4.4): `rule` is asked for
+/// that degree on every piece of a split tet, and must be exact for it (the "exact" and
+/// "subtets" rules are; volume ratios are not, even for a Tet4). Tets integrated whole use
+/// chapter 1's element masses.
+Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule);
+
+} // namespace kerf

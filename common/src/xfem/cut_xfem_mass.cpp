@@ -1,0 +1,56 @@
+#include "kerf/xfem/cut_xfem_mass.hpp"
+
+#include "kerf/fem/tet_mass.hpp"
+
+#include <vector>
+
+namespace kerf {
+
+Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule) {
+  const TetMesh& mesh = model.mesh();
+  const MeshPieces& pieces = model.pieces();
+  const int n = mesh.nodes_per_tet();
+  const int degree = 2 * mesh.order();
+  std::vector<Eigen::Triplet<double>> entries;
+  // Adds the scalar mass m (n x n) of piece p of tet t, through its phantom nodes, times I_3.
+  const auto add = [&](Eigen::Index t, int p, const Eigen::MatrixXd& m) {
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        for (int c = 0; c < 3; ++c)
+          entries.emplace_back(3 * model.phantom_node(t, p, a) + c, 3 * model.phantom_node(t, p, b) + c, m(a, b));
+  };
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    const int np = model.split(t) ? pieces.num_pieces(t) : 1;
+    const int e = pieces.entry[static_cast<std::size_t>(t)];
+    if (np == 1) {
+      // The whole tet, possibly with enrichments that are 1 all over it.
+      Eigen::MatrixXd m;
+      if (n == 4) {
+        m = tet4_mass(tet_corners(mesh, t), density);
+      } else {
+        Eigen::Matrix<double, 10, 3> X;
+        for (int a = 0; a < 10; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
+        m = tet10_mass(X, density);
+      }
+      add(t, 0, m);
+      continue;
+    }
+    const TetPieces& tp = pieces.tets[static_cast<std::size_t>(e)];
+    const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
+    for (int p = 0; p < np; ++p) {
+      const PieceQuadratureRule r = rule(X, tp, p, degree);
+      Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+      for (std::size_t q = 0; q < r.points.size(); ++q) {
+        const Eigen::VectorXd N = model.shape_values(t, r.points[q]);
+        m += density * r.weights[q] * N * N.transpose();
+      }
+      add(t, p, m);
+    }
+  }
+  const Eigen::Index size = 3 * model.num_dof_nodes();
+  Eigen::SparseMatrix<double> M(size, size);
+  M.setFromTriplets(entries.begin(), entries.end());
+  return M;
+}
+
+} // namespace kerf
