@@ -108,7 +108,7 @@ private:
 //
 // As in chapter 1, with two checks that this chapter needs: Tet4 elements (a cut Tet10 needs
 // the sub-element quadrature of chapter 4, since its stiffness integrand is not constant) and
-// exactly one rectangle cut (a node that two cuts reach needs two enrichments; chapter 5 on).
+// exactly one rectangle cut (a node that two cuts reach needs two enrichments; chapter 4 on).
 void CutElasticity::make_mesh() {
   mesh_ = kerf::make_scene_mesh(scene_, &std::cerr);
   boundary_ = kerf::boundary_faces(mesh_);

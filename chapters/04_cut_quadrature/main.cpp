@@ -302,7 +302,7 @@ int main(int argc, char** argv) {
       "  --probes IN.csv        points (header x,y,z) at which to write the displacement ...\n"
       "  --probes-out OUT.csv   ... to this file (header x,y,z,ux,uy,uz), each on its own side of the cut\n"
       "  --moments-out FILE.csv the integrals of 1, x, y, z, x^2, y^2, z^2, xy, yz, xz over every piece of every\n"
-      "                         completely cut tet by the scene's quadrature rule\n"
+      "                         cut tet (completely or partially) by the scene's quadrature rule\n"
       "                         (header element,piece,volume,mx,my,mz,mxx,myy,mzz,mxy,myz,mxz)\n"
       "  --out DIR              where the .vtu files and CSV files go (default: output)\n"
       "  --quiet                no progress lines\n"

@@ -122,7 +122,7 @@ void write_piece_moments_csv(const std::filesystem::path& file, const TetMesh& m
   char line[512];
   for (std::size_t e = 0; e < pieces.tets.size(); ++e) {
     const TetPieces& tp = pieces.tets[e];
-    if (tp.num_pieces() < 2) continue;
+    if (tp.state != SurfaceCutState::completely_cut && tp.state != SurfaceCutState::partially_cut) continue;
     const int t = pieces.entry_tet[e];
     const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
     for (int p = 0; p < tp.num_pieces(); ++p) {

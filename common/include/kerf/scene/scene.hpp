@@ -54,7 +54,7 @@ struct TractionSpec {
   Eigen::Vector3d total_force{0, 0, 0}; ///< N
 };
 
-/// A cut: a rectangle (origin + two edges) or a triangle-mesh surface (chapter 3 on).
+/// A cut: a rectangle (origin + two edges, chapter 3 on) or a triangle-mesh surface (chapter 4 on).
 struct CutSpec {
   bool is_rectangle = true;
   Eigen::Vector3d origin{0, 0, 0}, edge1{0, 0, 0}, edge2{0, 0, 0}; ///< m

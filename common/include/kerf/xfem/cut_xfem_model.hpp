@@ -23,9 +23,10 @@ namespace kerf {
 using PieceRuleFunction = std::function<PieceQuadratureRule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces,
                                                              int piece, int degree)>;
 
-/// The integrand degrees on one piece, where every enrichment is constant (notes 4.4): the
-/// stiffness B^T C B is of degree 0 on a Tet4 and 2 on a Tet10, the body force N b of degree 1
-/// and 2. One rule of degree 2 p - ... the larger serves both: 1 for Tet4, 2 for Tet10.
+/// The degree a piece's rule needs for the stiffness and the body force together. On one piece
+/// every enrichment is constant (notes 4.4), so B^T C B has degree 0 on a Tet4 and 2 on a Tet10,
+/// and N b (b constant) degree 1 and 2: one rule of the larger degree serves both, 1 for a Tet4
+/// and 2 for a Tet10. (The mass N^T N needs 2 and 4: cut_xfem_mass.hpp asks for its own.)
 inline int stiffness_and_load_degree(int order) { return order == 1 ? 1 : 2; }
 
 /// A Tet4 or Tet10 mesh cut by triangle-mesh cuts, enriched on the one-ring.

@@ -27,7 +27,8 @@ void sample_cut_xfem_probes(const std::filesystem::path& probes_in, const std::f
 /// and `piece` (-1 for a tet drawn whole).
 void write_cut_xfem_vtu(const std::filesystem::path& file, const CutXfemModel& model, const Eigen::VectorXd& u);
 
-/// --moments-out FILE: one row per piece of every completely cut tet, header
+/// --moments-out FILE: one row per piece of every cut tet (completely cut: two or more pieces;
+/// partially cut: one, the whole tet, which the cut enters without dividing it), header
 /// `element,piece,volume,mx,my,mz,mxx,myy,mzz,mxy,myz,mxz`, the integrals over the piece of 1,
 /// x, y, z, x^2, y^2, z^2, xy, yz, xz by `rule` (global coordinates, SI units), written with
 /// 17 significant digits.
