@@ -16,6 +16,8 @@ namespace {
 struct CellPlanes {
   std::vector<std::vector<Plane>> planes; ///< per cell
   std::vector<int> piece;                 ///< per cell
+  std::vector<Eigen::Vector3d> lo, hi;    ///< per cell, its bounding box widened by the tolerance: most cells
+                                          ///< of a finely cut tet are small, and the box rejects them cheaply
   double tolerance = 0.0;                 ///< a distance below which a point counts as on a plane (m)
 };
 
@@ -24,6 +26,14 @@ CellPlanes cell_planes(const TetPieces& pieces) {
   double diameter = 0.0;
   for (std::size_t c = 0; c < pieces.cells.size(); ++c) {
     std::vector<Plane> planes;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
+    for (const CellFace& face : pieces.cells[c].faces)
+      for (const Eigen::Vector3d& x : face.polygon) {
+        lo = lo.cwiseMin(x);
+        hi = hi.cwiseMax(x);
+      }
+    result.lo.push_back(lo);
+    result.hi.push_back(hi);
     for (const CellFace& face : pieces.cells[c].faces) {
       const Eigen::Vector3d a = polygon_area_vector(face.polygon);
       const double norm = a.norm();
@@ -37,6 +47,10 @@ CellPlanes cell_planes(const TetPieces& pieces) {
   // Round-off in a plane's value is some epsilon times the cell's size: 1e-12 of it is far
   // above that and far below any sampling spacing.
   result.tolerance = 1e-12 * diameter;
+  for (std::size_t c = 0; c < result.lo.size(); ++c) {
+    result.lo[c].array() -= result.tolerance;
+    result.hi[c].array() += result.tolerance;
+  }
   return result;
 }
 
@@ -46,6 +60,7 @@ int piece_of_point(const CellPlanes& cells, const Eigen::Vector3d& x) {
   double least = 1e300;
   int best = -1;
   for (std::size_t c = 0; c < cells.planes.size(); ++c) {
+    if ((x.array() < cells.lo[c].array()).any() || (x.array() > cells.hi[c].array()).any()) continue;
     double outside = -1e300;
     for (const Plane& plane : cells.planes[c]) outside = std::max(outside, plane.evaluate(x));
     if (outside <= 0.0) return cells.piece[c];
