@@ -5,10 +5,10 @@ set terminal pngcairo size 1500,900 enhanced font "DejaVu Sans,11" linewidth 1.5
 set datafile separator ","
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
 set output "error_cost.png"
-floor(e) = e < 1e-16 ? 1e-16 : e
+at_least(e) = e < 1e-16 ? 1e-16 : e
 # cost.csv rows of one cut and rule; the sphere's errors are against the tessellated polyhedron (column 9).
-pick(cut, rule, x) = (strcol(1) eq cut && strcol(3) eq rule) ? column(x) : NaN
-err(cut) = floor(cut eq "spherical" ? column(9) : column(8))
+pick(cut, rule, c) = (strcol(1) eq cut && strcol(3) eq rule) ? column(c) : NaN
+err(cut) = at_least(cut eq "spherical" ? column(9) : column(8))
 set style line 1 lc rgb "#d62728" pt 7 ps 1.4           # exact
 set style line 2 lc rgb "#9467bd" pt 5 ps 1.2           # Koschier's moment fitting
 set style line 3 lc rgb "#2ca02c" pt 9 ps 1.4           # subtets
@@ -22,17 +22,17 @@ set yrange [5e-17:20]
 set multiplot layout 2,3 title "Koschier Table 1 again: the unit tet's corner piece; largest relative error of 1, x+y+z, yz+xz+xy, x^2+y^2+z^2" font ",13"
 do for [row = 1:2] {
   do for [cut in "planar kinked spherical"] {
-    set title cut.(cut eq "spherical" ? " (icosphere levels 1-6, error against the tessellated polyhedron)" : "")
+    set title cut.(cut eq "spherical" ? " (levels 1-6; error vs the tessellated polyhedron = sub-tets)" : "")
     set xlabel (row == 1 ? "quadrature points (nonzero weight)" : "seconds per element (building the rule and summing; one core)")
     set ylabel "largest relative error"
-    set key bottom left box opaque font ",9"
-    x = (row == 1 ? 6 : 7)
-    plot "cost.csv" using (pick(cut, "exact", x)):(err(cut)) w p ls 1 t "exact (24 pts, exact moments)", \
-         "" using (pick(cut, "moment_fitting", x)):(err(cut)) w p ls 2 t "Koschier moment fitting (24 pts)", \
-         "" using (pick(cut, "subtets", x)):(err(cut)) w p ls 3 t "sub-tets, 4-pt Gauss", \
-         "" using (pick(cut, "volume_ratio", x)):(err(cut)) w p ls 4 t "volume ratio", \
-         "" using (pick(cut, "lattice", x)):(err(cut)) w p ls 5 t "lattice n^3 (Paulus)", \
-         "" using (pick(cut, "regular", x)):(err(cut)) w p ls 6 t "regular n^3 (Kaufmann)"
+    set key left center box opaque font ",9"  # the middle of the y range is empty: exact rules lie below, the rest above
+    xcol = (row == 1 ? 6 : 7)
+    plot "cost.csv" using (pick(cut, "exact", xcol)):(err(cut)) w p ls 1 t "exact (24 pts, exact moments)", \
+         "" using (pick(cut, "moment_fitting", xcol)):(err(cut)) w p ls 2 t "Koschier moment fitting (24 pts)", \
+         "" using (pick(cut, "subtets", xcol)):(err(cut)) w p ls 3 t "sub-tets, 4-pt Gauss", \
+         "" using (pick(cut, "volume_ratio", xcol)):(err(cut)) w p ls 4 t "volume ratio", \
+         "" using (pick(cut, "lattice", xcol)):(err(cut)) w p ls 5 t "lattice n^3 (Paulus)", \
+         "" using (pick(cut, "regular", xcol)):(err(cut)) w p ls 6 t "regular n^3 (Kaufmann)"
   }
 }
 unset multiplot

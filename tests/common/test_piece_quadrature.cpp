@@ -194,6 +194,16 @@ TEST_CASE("the fitting systems have full rank: 24 points for degree 2, 125 for d
   CHECK(quartic.points.size() == 125);
   CHECK(quartic.rank == 35);
   MESSAGE("condition numbers: degree 2 " << quadratic.condition << ", degree 4 " << quartic.condition);
+  // Why 5^3 and not 4^3 Stroud points for degree 4: on the product of 4 points per direction the
+  // quartic (xi_1 - u_1)...(xi_1 - u_4) vanishes at every point, so the rank drops below 35.
+  const std::vector<Eigen::Vector3d> four_cubed = kerf::tet_quadrature_rule(7).points;
+  REQUIRE(four_cubed.size() == 64);
+  Eigen::MatrixXd A(35, 64);
+  for (int j = 0; j < 64; ++j) A.col(j) = quartic.basis.evaluate(four_cubed[static_cast<std::size_t>(j)]);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);
+  int rank = 0;
+  for (Eigen::Index k = 0; k < svd.singularValues().size(); ++k) rank += svd.singularValues()[k] > 1e-12 * svd.singularValues()[0];
+  CHECK(rank < 35);
   // The orthonormal basis is orthonormal: its Gram matrix by a degree-8 rule is the identity.
   const kerf::TetQuadratureRule gauss = kerf::tet_quadrature_rule(8);
   Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(35, 35);
