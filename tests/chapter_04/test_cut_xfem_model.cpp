@@ -9,6 +9,7 @@
 #include "kerf/fem/solve_linear_static.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
+#include "kerf/quadrature/gauss_piece_rules.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/enrichment.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
@@ -66,6 +67,11 @@ Eigen::Vector3d point_in_piece(const kerf::TetMesh& mesh, const kerf::MeshPieces
   return x / count;
 }
 
+// Sub-tetrahedra with Gauss rules of the degree asked for: exact for every polynomial integrand.
+kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece, int degree) {
+  return kerf::subtet_rule(pieces, piece, degree);
+}
+
 // Everything a cut XFEM solve keeps alive.
 struct CutBody {
   kerf::TetMesh mesh;
@@ -73,7 +79,7 @@ struct CutBody {
   kerf::MeshPieces pieces;
   kerf::SurfaceEnrichment enrichment;
   kerf::CutXfemModel model;
-  CutBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::PieceRuleFunction& rule = kerf::subtet_rule)
+  CutBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::PieceRuleFunction& rule = subtets)
       : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
         enrichment(kerf::make_surface_enrichment(mesh, pieces)), model(mesh, material, pieces, enrichment, rule) {}
 };
@@ -147,7 +153,7 @@ TEST_CASE("a Tet10 mesh cut by a kinked surface reproduces a quadratic field exa
   std::vector<kerf::TriangleSurface> surfaces;
   if (cut) surfaces.push_back(kinked_surface());
   const kerf::PieceRuleFunction rule = [degree](const Eigen::Matrix<double, 4, 3>& X, const kerf::TetPieces& p, int piece, int) {
-    return kerf::subtet_rule(X, p, piece, degree);
+    return subtets(X, p, piece, degree);
   };
   CutBody body(kerf::tet10_from_tet4(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 3})), surfaces, rule);
   REQUIRE((body.pieces.count(kerf::SurfaceCutState::completely_cut) > 0) == cut);

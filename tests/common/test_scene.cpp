@@ -143,8 +143,12 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
 TEST_CASE("a chapter refuses the methods it has not taught yet") {
   const kerf::Scene scene = kerf::parse_scene(full_scene, "full.json", "/data");
   CHECK_THROWS_WITH_AS(kerf::require_features(scene, {}), doctest::Contains("chapter 2"), kerf::InputError);
-  CHECK_THROWS_WITH_AS(kerf::require_features(scene, {true, false, true}), doctest::Contains("chapter 3"), kerf::InputError);
-  CHECK_NOTHROW(kerf::require_features(scene, {true, true, true}));
+  CHECK_THROWS_WITH_AS(kerf::require_features(scene, {.corotational = true, .cuts = false, .dynamics = true}),
+                       doctest::Contains("chapter 3"), kerf::InputError);
+  // Its second cut is a triangle-mesh surface: chapter 4.
+  CHECK_THROWS_WITH_AS(kerf::require_features(scene, {.corotational = true, .cuts = true, .dynamics = true}),
+                       doctest::Contains("chapter 4"), kerf::InputError);
+  CHECK_NOTHROW(kerf::require_features(scene, {.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true}));
 }
 
 TEST_CASE("a scene file that does not exist is an InputError naming it") {

@@ -27,23 +27,6 @@ Eigen::Matrix3d corner_jacobian(const Corners& X) {
 
 } // namespace
 
-PieceQuadratureRule subtet_rule(const Corners& X, const TetPieces& pieces, int piece, int degree) {
-  (void)X;
-  const TetQuadratureRule reference = tet_quadrature_rule(degree);
-  PieceQuadratureRule rule;
-  for (const int c : pieces.pieces[static_cast<std::size_t>(piece)].cells)
-    for (const Corners& T : convex_cell_tetrahedra(pieces.cells[static_cast<std::size_t>(c)])) {
-      const Eigen::Matrix3d J = corner_jacobian(T);
-      const double det = J.determinant();
-      if (!(det > 0.0)) continue; // a flat fan tet (its face passes through the apex) holds nothing
-      for (std::size_t q = 0; q < reference.points.size(); ++q) {
-        rule.points.push_back(T.row(0).transpose() + J * reference.points[q]);
-        rule.weights.push_back(reference.weights[q] * det);
-      }
-    }
-  return rule;
-}
-
 CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
                            const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule)
     : mesh_(mesh), material_(material), pieces_(pieces), enrichment_(enrichment) {

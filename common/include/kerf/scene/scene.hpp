@@ -112,8 +112,8 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
 struct SceneFeatures {
   bool corotational = false;
   bool cuts = false;
-  bool cut_quadrature = false; ///< triangle-mesh cuts, several cuts, cut Tet10, the "quadrature" field (chapter 4)
   bool dynamics = false;
+  bool cut_quadrature = false; ///< triangle-mesh cuts, several cuts, cut Tet10, the "quadrature" field (chapter 4)
 };
 
 /// Throws InputError if `scene` needs a method that is not in `taught`.

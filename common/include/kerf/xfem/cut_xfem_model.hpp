@@ -19,10 +19,6 @@
 
 namespace kerf {
 
-/// The rule for piece `piece` of a cut tet with corners X, exact to `degree` on that piece.
-using PieceRuleFunction = std::function<PieceQuadratureRule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces,
-                                                             int piece, int degree)>;
-
 /// The degree a piece's rule needs for the stiffness and the body force together. On one piece
 /// every enrichment is constant (notes 4.4), so B^T C B has degree 0 on a Tet4 and 2 on a Tet10,
 /// and N b (b constant) degree 1 and 2: one rule of the larger degree serves both, 1 for a Tet4
@@ -141,9 +137,5 @@ std::vector<UnheldPiece> cut_xfem_unheld_pieces(const CutXfemModel& model, const
 ///         by no Dirichlet condition (cut_xfem_unheld_pieces)
 Eigen::VectorXd solve_linear_cut_xfem(const CutXfemModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,
                                       const SolverSettings& solver_settings);
-
-/// The sub-tetrahedra rule: a Gauss rule of `degree` on every tet of every convex cell of the
-/// piece (Paper 000 section 5.2, Paper 003). Exact for polynomials of that degree on any piece.
-PieceQuadratureRule subtet_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece, int degree);
 
 } // namespace kerf

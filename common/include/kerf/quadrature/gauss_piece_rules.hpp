@@ -1,0 +1,21 @@
+/// @file gauss_piece_rules.hpp
+/// @brief Two rules built from Gauss rules on tets: the uncut tet's rule scaled by the volume ratio, and Gauss on sub-tetrahedra.
+#pragma once
+
+#include "kerf/quadrature/piece_quadrature_rule.hpp"
+
+namespace kerf {
+
+/// The whole tet's Gauss rule of `degree` (tet_quadrature_rule) with every weight multiplied by
+/// V_piece / V (Schoch eqs. 54-63). Exact for a constant integrand only: the Tet4 stiffness
+/// B^T C B, and with it corotated Tet4. It does not integrate the Tet4 consistent mass
+/// (degree 2) nor Tet10 stiffness: the points do not see where the piece is.
+PieceQuadratureRule volume_ratio_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece, int degree);
+
+/// The Gauss rule of `degree` on every tet of the fan of every convex cell of the piece
+/// (convex_cell_tetrahedra; Schoch section 5.2, Paulus's sub-tetrahedra). Exact for
+/// polynomials of `degree`, for any piece, since the cells partition it; the points lie inside.
+/// It costs (number of sub-tets) x (points of the Gauss rule).
+PieceQuadratureRule subtet_rule(const TetPieces& pieces, int piece, int degree);
+
+} // namespace kerf
