@@ -265,15 +265,16 @@ TEST_CASE("the rules of all pieces of a tet add up to the rule of the whole tet"
     const kerf::TetPieces pieces = kerf::split_tet_by_triangles(X, cut);
     REQUIRE(pieces.num_pieces() >= 2);
     for (kerf::QuadratureRuleKind kind :
-         {kerf::QuadratureRuleKind::exact, kerf::QuadratureRuleKind::subtets, kerf::QuadratureRuleKind::volume_ratio,
-          kerf::QuadratureRuleKind::lattice, kerf::QuadratureRuleKind::regular}) {
+         {kerf::QuadratureRuleKind::exact, kerf::QuadratureRuleKind::subtets, kerf::QuadratureRuleKind::moment_fitting,
+          kerf::QuadratureRuleKind::volume_ratio, kerf::QuadratureRuleKind::lattice, kerf::QuadratureRuleKind::regular}) {
       CAPTURE(kerf::to_string(kind));
       kerf::PieceRuleOptions options;
       options.regular_cells = 20;
       Eigen::Matrix<double, 10, 1> sum = Eigen::Matrix<double, 10, 1>::Zero();
       for (int p = 0; p < pieces.num_pieces(); ++p) sum += kerf::piece_moments(kerf::piece_quadrature_rule(kind, X, cut, pieces, p, options));
-      // The whole tet's rule of the same kind: for exact, subtets and volume ratios the exact
-      // integrals (they integrate quadratics); for the sampled rules, the same samples uncut.
+      // The whole tet's rule of the same kind: for exact, subtets, moment fitting (exact on
+      // these planar and kinked cuts) and volume ratios the exact integrals (they integrate
+      // quadratics); for the sampled rules, the same samples uncut.
       const Eigen::Matrix<double, 10, 1> whole = kerf::piece_moments(kerf::piece_quadrature_rule(kind, X, {}, uncut, 0, options));
       // Sums of at most 8000 terms of size <= 1/6 / 8000 each: 1e-14 absolute.
       CHECK((sum - whole).cwiseAbs().maxCoeff() < 1e-14);
