@@ -2,7 +2,7 @@
 // forms and against Gauss on sub-tetrahedra, moment fitting with exact moments reproducing every
 // monomial of its degree on planar, kinked and folded pieces, the volume ratio's exactness for
 // constants and its failure for x^2, the rules of all pieces summing to the tet's, Koschier's
-// fitted moments (exact on planar cuts, approximate on a kink), and the convergence of the
+// fitted moments (exact on planar cuts and, as measured, on kinks), and the convergence of the
 // sampled rules.
 #include "kerf/cut/tet_pieces.hpp"
 #include "kerf/fem/tet_quadrature.hpp"
@@ -282,7 +282,7 @@ TEST_CASE("the rules of all pieces of a tet add up to the rule of the whole tet"
   }
 }
 
-TEST_CASE("Koschier's fitted moments: exact on planar cuts, approximate on a kink, with the stated ranks") {
+TEST_CASE("Koschier's fitted moments: exact on planar cuts and on kinks, with the stated ranks") {
   std::mt19937 random(3);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   double worst_planar = 0.0;
@@ -330,7 +330,7 @@ TEST_CASE("Koschier's fitted moments: exact on planar cuts, approximate on a kin
   CHECK(worst_kink < 1e-12);
 }
 
-TEST_CASE("the lattice and the regular grid converge at their stated rates") {
+TEST_CASE("the lattice on the uncut tet is the centroid rule on its sub-tets: second order") {
   const Corners X = unit_tet();
   const kerf::TetPieces uncut = kerf::split_tet_by_triangles(X, {});
   // Uncut, the lattice is the centroid rule on n^3 sub-tets: its error for x^2 is O(h^2), so
