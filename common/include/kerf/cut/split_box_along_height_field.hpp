@@ -66,7 +66,8 @@ struct HeightFieldSplitMesh {
 /// below holds the prism under the cut surface, (x_1 - x_0)(y_1 - y_0)(z_c - z_0) plus, over
 /// each triangle of cut_surface, its projected area times the mean of h at its corners.
 ///
-/// @param min, max lower and upper corner of the box (m), max componentwise larger
+/// @param min      lower corner of the box (m)
+/// @param max      upper corner of the box (m), componentwise larger than min
 /// @param cells    nx, ny, nz cells; nz at least 2 (a layer strictly inside)
 /// @param z_c      the cut's reference height, min z < z_c < max z
 /// @param h        the cut's height above z_c, evaluated at the grid's (x, y); finite
