@@ -1,8 +1,8 @@
 #include "kerf/cut/height_field_surface.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
-#include <string>
 
 namespace kerf {
 
@@ -23,8 +23,11 @@ TriangleSurface height_field_surface(const HeightField& h, double z_c, const Eig
       const double x = min[0] + double(i) / nx * (max[0] - min[0]);
       const double y = min[1] + double(j) / ny * (max[1] - min[1]);
       const double height = h(x, y);
-      if (!std::isfinite(height))
-        throw std::invalid_argument("height_field_surface: h(" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
+      if (!std::isfinite(height)) {
+        std::ostringstream message;
+        message << "height_field_surface: h(" << x << ", " << y << ") = " << height << " is not finite";
+        throw std::invalid_argument(message.str());
+      }
       surface.vertices.row(vertex(i, j)) << x, y, z_c + height;
     }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,7 +21,7 @@ HeightFieldSplitMesh split_box_along_height_field(const Eigen::Vector3d& min, co
     throw std::invalid_argument("split_box_along_height_field: cells must be at least 1 in x and y and 2 in z");
   if (!((max - min).minCoeff() > 0.0)) throw std::invalid_argument("split_box_along_height_field: max must exceed min in x, y and z");
   if (!(z_c > min[2] && z_c < max[2]))
-    throw std::invalid_argument("split_box_along_height_field: z_c = " + std::to_string(z_c) + " must lie strictly between min z and max z");
+    throw std::invalid_argument("split_box_along_height_field: z_c must lie strictly between min z and max z");
   if (!h) throw std::invalid_argument("split_box_along_height_field: the height function is empty");
   const int nx = cells[0], ny = cells[1], nz = cells[2];
   const Eigen::Index per_layer = static_cast<Eigen::Index>(nx + 1) * (ny + 1);
@@ -35,10 +36,13 @@ HeightFieldSplitMesh split_box_along_height_field(const Eigen::Vector3d& min, co
   std::vector<double> heights(static_cast<std::size_t>(per_layer));
   for (Eigen::Index s = 0; s < per_layer; ++s) {
     const double height = h(surface.vertices(s, 0), surface.vertices(s, 1));
-    if (!(height > -below && height < above))
-      throw std::invalid_argument("split_box_along_height_field: h = " + std::to_string(height) + " at grid node " + std::to_string(s) +
-                                  " (x = " + std::to_string(surface.vertices(s, 0)) + ", y = " + std::to_string(surface.vertices(s, 1)) +
-                                  ") is not strictly between -(z_c - min z) and max z - z_c: the tets next to it would flip");
+    if (!(height > -below && height < above)) {
+      std::ostringstream message;
+      message << "split_box_along_height_field: h = " << height << " m at grid node " << s << " (x = " << surface.vertices(s, 0)
+              << ", y = " << surface.vertices(s, 1) << ") is not strictly between -(z_c - min z) = " << -below
+              << " and max z - z_c = " << above << ": the tets next to it would flip";
+      throw std::invalid_argument(message.str());
+    }
     heights[static_cast<std::size_t>(s)] = height;
   }
 
