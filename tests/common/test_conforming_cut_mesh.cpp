@@ -199,6 +199,35 @@ TEST_CASE("split_box_along_height_field: the layer is the surface, every tet sca
   }
 }
 
+TEST_CASE("split_box_along_height_field: with no node layer at z_c (chapter 3's 3 x 6 x 19 cells) the nearest one is fitted onto it") {
+  const Eigen::Vector3i cells(3, 6, 19); // z step 0.2 / 19: layers 9 and 10 at 0.0947 and 0.1053
+  const Eigen::Index per_layer = 4 * 7;
+  for (int order : {1, 2}) {
+    CAPTURE(order);
+    const kerf::HeightFieldSplitMesh fitted = kerf::split_box_along_height_field(beam_min, beam_max, cells, z_c, flat, order);
+    REQUIRE(fitted.layer == 10); // 9.5 rounds up
+    // Ten even steps up to z_c, nine above it, and the layer exactly at z_c.
+    for (Eigen::Index v = 0; v < 20 * per_layer; ++v) {
+      const int k = static_cast<int>(v / per_layer);
+      const double expected = k <= 10 ? z_c * k / 10 : z_c + (0.2 - z_c) * (k - 10) / 9;
+      CHECK(std::abs(fitted.split.mesh.nodes(v, 2) - expected) <= 1e-16);
+      if (k == 10) CHECK(fitted.split.mesh.nodes(v, 2) == z_c);
+    }
+    const kerf::HeightField dome = heights()[0].h;
+    const kerf::HeightFieldSplitMesh r = kerf::split_box_along_height_field(beam_min, beam_max, cells, z_c, dome, order);
+    const kerf::TriangleSurface expected = kerf::height_field_surface(dome, z_c, {0, 0}, {0.03, 0.06}, {3, 6});
+    CHECK(r.cut_surface.vertices == expected.vertices);
+    CHECK(r.cut_surface.triangles == expected.triangles);
+    double total = 0.0;
+    for (Eigen::Index t = 0; t < r.split.mesh.num_tets(); ++t) {
+      const double v = kerf::signed_tet_volume(kerf::tet_corners(r.split.mesh, t));
+      CHECK(v > 0.0);
+      total += v;
+    }
+    CHECK(std::abs(total - box_volume) <= 1e-13 * box_volume);
+  }
+}
+
 TEST_CASE("split_box_along_height_field: the layer's nodes are duplicated and the two parts share none") {
   const Eigen::Vector3i cells(2, 4, 6);
   for (int order : {1, 2}) {
