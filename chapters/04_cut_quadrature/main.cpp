@@ -177,9 +177,14 @@ void CutQuadrature::apply_cut() {
 // split tet as its own "phantom" element: on a piece every enrichment is 0 or 1, so the field
 // there is an ordinary Tet4 or Tet10 field whose nodal values are u_i, or u_i + a_i^k where
 // enrichment k is 1, and everything (stiffness, corotation, loads) is the ordinary element's,
-// integrated over the piece alone. The rule is the scene's choice; the default, "exact", fits
-// weights at fixed points to the piece's exact polyhedral moments, and so integrates the
-// stiffness and loads of both element types exactly.
+// integrated over the piece alone. The rule is the scene's choice. The default, "subtets", puts a
+// Gauss rule of the needed degree on every sub-tetrahedron of the piece's convex cells: exact
+// for the stiffness and loads of both element types, with positive weights inside the piece.
+// "exact" is exact too, with fewer points (weights fitted at fixed points to the piece's exact
+// polyhedral moments), but some of its weights are negative and its points lie outside the
+// piece. That is harmless for the linear model; for the corotated one the tangent at each point,
+// R K_q R^T, is no polynomial, and summed with negative weights it need not stay positive
+// definite: the demo's Newton iteration fails with it (results.md says where).
 //
 // The moments of every piece go to --moments-out as soon as the rule is known: a run that
 // fails later still says what its quadrature did.
@@ -187,7 +192,11 @@ void CutQuadrature::setup_system() {
   rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
   model_ = std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, pieces_, enrichment_, rule_);
   report("quadrature: rule \"" + scene_.quadrature.rule + "\", " + std::to_string(model_->num_piece_points()) +
-         " points on the pieces of the split tets");
+         " points on the pieces of the split tets, " + std::to_string(model_->num_negative_weights()) + " of them with negative weights");
+  if (scene_.model == "corotational" && model_->num_negative_weights() > 0)
+    std::cerr << "warning: " << scene_.source.string() << ": quadrature.rule: \"" << scene_.quadrature.rule << "\" has "
+              << model_->num_negative_weights() << " negative weights; the corotated tangent summed with them may not be "
+              << "positive definite (\"subtets\" has none)\n";
   if (options_.moments_out) {
     kerf::write_piece_moments_csv(*options_.moments_out, mesh_, pieces_, rule_);
     report("wrote " + options_.moments_out->string());

@@ -84,16 +84,6 @@ bool has_area(const CellFace& face, double tolerance) {
   return face.polygon.size() >= 3 && polygon_area_vector(face.polygon).norm() > tolerance * tolerance;
 }
 
-// Whether the closed cell and the convex polygon P (in any plane) have a point in common.
-bool cell_touches(const ConvexCell& cell, std::vector<Eigen::Vector3d> P, double tolerance) {
-  for (const CellFace& face : cell.faces) {
-    if (!has_area(face, tolerance)) continue;
-    P = keep_below(P, face_plane(face, tolerance));
-    if (P.empty()) return false;
-  }
-  return true;
-}
-
 // Whether point x lies in the closed triangle t, given that it lies in t's plane: its three
 // barycentric coordinates (by areas in the plane) are >= -tolerance relative.
 bool in_triangle(const Eigen::Vector3d& x, const CutTriangle& t, const Eigen::Vector3d& unit_normal) {
@@ -153,31 +143,57 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
     }
     if (P.size() < 3) continue; // T misses the tet, or touches it in a point or a segment only
 
-    // 2. The cells that touch P_T, split by the planes through T's edges, inner side = towards
-    // the opposite corner (value >= 0 inside the triangle's prism).
-    std::vector<int> near;
-    for (int c = 0; c < static_cast<int>(cells.size()); ++c)
-      if (cell_touches(cells[c], P, tolerance)) near.push_back(c);
+    // 2. Split only where T's plane meets a cell inside T's footprint. For every cell: its
+    // section by T's plane (or its face in that plane, for a cell that only touches it). A
+    // section that lies across one of T's edges is split by the plane through that edge
+    // (perpendicular to T, inner side towards the opposite corner), and both halves are looked
+    // at again; a section outside an edge is not T's business; a section inside all three is
+    // inside T, and the cell is split by T's plane: its new faces lie in T, covered by the cut.
     std::array<SnappedPlaneSide, 3> edge_sides;
+    std::array<Plane, 3> edge_planes;
     for (int e = 0; e < 3; ++e) {
       const Eigen::Vector3d& p = T.corners[e];
       const Eigen::Vector3d& q = T.corners[(e + 1) % 3];
-      Eigen::Vector3d m = n.cross(q - p).normalized(); // in T's plane, perpendicular to the edge, pointing inwards
+      const Eigen::Vector3d m = n.cross(q - p).normalized(); // in T's plane, perpendicular to the edge, pointing inwards
       edge_sides[e] = {m, m.dot(p), tolerance};
-      const Plane plane{m, m.dot(p)};
-      const std::size_t count = near.size();
-      for (std::size_t i = 0; i < count; ++i) {
-        const int b = split_cell(cells, near[i], edge_sides[e], plane, {FaceOrigin::Kind::edge_plane, static_cast<int>(k)});
-        if (b >= 0 && cell_touches(cells[b], P, tolerance)) near.push_back(b);
-      }
+      edge_planes[e] = {m, m.dot(p)};
     }
-    // ... and the cells inside the prism by T's own plane: their new faces lie inside T.
     const TrianglePlaneSide side{&T, &X, n, n.dot(T.corners[0]), tolerance};
     const Plane plane{n, n.dot(T.corners[0])};
-    for (const int c : near) {
-      bool inside = true;
-      for (int e = 0; e < 3 && inside; ++e) inside = cell_side(cells[c], edge_sides[e]) >= 0;
-      if (inside) split_cell(cells, c, side, plane, {FaceOrigin::Kind::cut_plane, static_cast<int>(k)});
+    std::vector<int> work(cells.size());
+    std::iota(work.begin(), work.end(), 0);
+    std::vector<Eigen::Vector3d> section, above, below;
+    while (!work.empty()) {
+      const int c = work.back();
+      work.pop_back();
+      // The section: the cell's points on T's plane (corners of value 0 and crossings).
+      section.clear();
+      const bool straddles = cell_side(cells[c], side) == 0;
+      for (const CellFace& face : cells[c].faces) split_polygon(face.polygon, side, above, below, &section);
+      if (section.size() < 3) continue; // the plane misses the cell, or touches an edge or a corner
+      int split_edge = -1;
+      bool outside = false;
+      for (int e = 0; e < 3 && split_edge < 0 && !outside; ++e) {
+        bool in = false, out = false;
+        for (const Eigen::Vector3d& x : section) {
+          const double v = edge_sides[e](x);
+          in = in || v > 0.0;
+          out = out || v < 0.0;
+        }
+        if (in && out) split_edge = e;
+        else if (!in) outside = true; // the section lies on or beyond this edge's line
+      }
+      if (outside) continue;
+      if (split_edge >= 0) {
+        const int b = split_cell(cells, c, edge_sides[split_edge], edge_planes[split_edge],
+                                 {FaceOrigin::Kind::edge_plane, static_cast<int>(k)});
+        if (b >= 0) {
+          work.push_back(c);
+          work.push_back(b);
+        }
+        continue;
+      }
+      if (straddles) split_cell(cells, c, side, plane, {FaceOrigin::Kind::cut_plane, static_cast<int>(k)});
     }
   }
 

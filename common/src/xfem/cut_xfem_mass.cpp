@@ -12,12 +12,20 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
   const int n = mesh.nodes_per_tet();
   const int degree = 2 * mesh.order();
   std::vector<Eigen::Triplet<double>> entries;
-  // Adds the scalar mass m (n x n) of piece p of tet t, through its phantom nodes, times I_3.
+  // Adds T_p^T (m kron I_3) T_p for the scalar mass m (n x n) of piece p of tet t: node a's
+  // value on the piece is u_a, plus a_k where enrichment k is 1 there, so its row of m goes to
+  // the DOF node of u_a and to that of a_k.
   const auto add = [&](Eigen::Index t, int p, const Eigen::MatrixXd& m) {
+    const auto dof_nodes = [&](int a) {
+      std::vector<int> nodes{mesh.tets(t, a)};
+      if (const int phantom = model.phantom_node(t, p, a); phantom != nodes.front()) nodes.push_back(phantom);
+      return nodes;
+    };
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b)
-        for (int c = 0; c < 3; ++c)
-          entries.emplace_back(3 * model.phantom_node(t, p, a) + c, 3 * model.phantom_node(t, p, b) + c, m(a, b));
+        for (const int i : dof_nodes(a))
+          for (const int j : dof_nodes(b))
+            for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, m(a, b));
   };
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const int np = model.split(t) ? pieces.num_pieces(t) : 1;

@@ -138,6 +138,14 @@ std::span<const CutXfemModel::Piece> CutXfemModel::integrated_pieces(Eigen::Inde
   return {&whole_[static_cast<std::size_t>(t)], 1};
 }
 
+Eigen::Index CutXfemModel::num_negative_weights() const {
+  Eigen::Index count = 0;
+  for (const std::vector<Piece>& list : piece_data_)
+    for (const Piece& piece : list)
+      for (const Point& point : piece.points) count += point.weight < 0.0 ? 1 : 0;
+  return count;
+}
+
 Eigen::Index CutXfemModel::num_piece_points() const {
   Eigen::Index count = 0;
   for (const std::vector<Piece>& list : piece_data_)

@@ -64,9 +64,12 @@ struct CutSpec {
 
 /// How the pieces of cut elements are integrated (chapter 4 on): `"quadrature": {"rule": ...}`.
 struct QuadratureSpec {
-  /// "exact" (the default: moment fitting on exact polyhedral moments), "subtets",
+  /// "subtets" (the default: Gauss rules on the sub-tetrahedra of each piece, exact for the
+  /// polynomial integrands with positive weights inside the piece), "exact" (moment fitting on
+  /// fixed points with the exact polyhedral moments: exact too, but with negative weights at
+  /// points outside the piece, which the corotated Tet10 tangent does not survive),
   /// "moment_fitting", "volume_ratio" (Tet4 only), "lattice" or "regular".
-  std::string rule = "exact";
+  std::string rule = "subtets";
   bool given = false; ///< the scene has a "quadrature" field (chapters before 4 refuse it)
 };
 

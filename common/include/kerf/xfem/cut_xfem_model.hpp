@@ -88,6 +88,12 @@ public:
   bool split(Eigen::Index t) const { return !piece_data_[static_cast<std::size_t>(t)].empty(); }
   /// The total number of quadrature points on the pieces of split tets.
   Eigen::Index num_piece_points() const;
+  /// How many of them have a negative weight (moment-fitted rules have some). A negative weight
+  /// is harmless where the rule is exact for the integrand (the linear stiffness, the loads),
+  /// but the corotated tangent at a point, R K_q R^T, is not a polynomial: with negative weights
+  /// the sum over a piece need not be positive semi-definite, and Newton's matrix can lose
+  /// definiteness (notes 4.9, item 11).
+  Eigen::Index num_negative_weights() const;
 
 private:
   // One quadrature point of a piece: the physical shape gradients and values there and the weight.
