@@ -62,7 +62,8 @@ Eigen::Vector3d triangle_normal(const kerf::TriangleSurface& s, Eigen::Index f) 
 // Which tets of the box lie below the layer: their centroid in the unmapped box (h = 0).
 std::vector<char> tets_below(const kerf::TetMesh& unmapped) {
   std::vector<char> below(static_cast<std::size_t>(unmapped.num_tets()));
-  for (Eigen::Index t = 0; t < unmapped.num_tets(); ++t) below[static_cast<std::size_t>(t)] = kerf::tet_corners(unmapped, t).col(2).mean() < z_c;
+  for (Eigen::Index t = 0; t < unmapped.num_tets(); ++t)
+    below[static_cast<std::size_t>(t)] = kerf::tet_corners(unmapped, t).col(2).mean() < z_c;
   return below;
 }
 
@@ -126,7 +127,8 @@ TEST_CASE("height_field_surface: the graph of h on a grid, exactly on it, orient
   CHECK_THROWS_AS(kerf::height_field_surface(broken, z_c, {0, 0}, {1, 1}, {2, 2}), std::invalid_argument);
 }
 
-TEST_CASE("split_box_along_height_field: the layer is the surface, every tet scales by 1 + h/(z_c - z0) or 1 - h/(z1 - z_c), the box stays full") {
+TEST_CASE("split_box_along_height_field: the layer is the surface, every tet scales by 1 + h/(z_c - z0) or 1 - h/(z1 - z_c), "
+          "the box stays full") {
   const Eigen::Vector3i cells(4, 6, 8);
   const Eigen::Index per_layer = 5 * 7;
   for (int order : {1, 2}) {
@@ -144,7 +146,8 @@ TEST_CASE("split_box_along_height_field: the layer is the surface, every tet sca
       const kerf::TriangleSurface expected = kerf::height_field_surface(height.h, z_c, {0, 0}, {0.03, 0.06}, {4, 6});
       CHECK(r.cut_surface.vertices == expected.vertices);
       CHECK(r.cut_surface.triangles == expected.triangles);
-      for (Eigen::Index s = 0; s < per_layer; ++s) CHECK(Eigen::RowVector3d(mesh.nodes.row(r.layer * per_layer + s)) == Eigen::RowVector3d(expected.vertices.row(s)));
+      for (Eigen::Index s = 0; s < per_layer; ++s)
+        CHECK(Eigen::RowVector3d(mesh.nodes.row(r.layer * per_layer + s)) == Eigen::RowVector3d(expected.vertices.row(s)));
 
       // Per tet: the corners of the z step share (x, y); the volume ratio is the header's factor.
       double total = 0.0, volume_below = 0.0, min_ratio = 2.0, max_ratio = 0.0;
@@ -283,7 +286,8 @@ TEST_CASE("split_box_along_height_field: each part reproduces its own rigid moti
     bool whole_boundary; // Dirichlet on every boundary node, or on the two end faces only
   };
   const std::vector<Case> cases = {
-      {"rigid motions held at the ends", rigid({1e-3, -2e-3, 5e-4}, {0.01, -0.02, 0.03}), rigid({-2e-3, 1e-3, 3e-3}, {-0.03, 0.01, 0.02}), false},
+      {"rigid motions held at the ends", rigid({1e-3, -2e-3, 5e-4}, {0.01, -0.02, 0.03}), rigid({-2e-3, 1e-3, 3e-3}, {-0.03, 0.01, 0.02}),
+       false},
       {"linear fields on the boundary", affine({1e-3, -2e-3, 3e-3}, A_lower), affine({-1e-3, 2e-3, 1e-3}, A_upper), true}};
 
   for (int order : {1, 2}) {
@@ -307,7 +311,8 @@ TEST_CASE("split_box_along_height_field: each part reproduces its own rigid moti
             for (int k = 0; k < boundary.faces.cols(); ++k) held[static_cast<std::size_t>(boundary.faces(f, k))] = 1;
         } else {
           // Only z = 0 holds the part below and only z = 0.2 the part above: the cut is free.
-          for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v) held[static_cast<std::size_t>(v)] = mesh.nodes(v, 2) == 0.0 || mesh.nodes(v, 2) == 0.2;
+          for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v)
+            held[static_cast<std::size_t>(v)] = mesh.nodes(v, 2) == 0.0 || mesh.nodes(v, 2) == 0.2;
         }
         std::vector<kerf::DirichletNodes> conditions;
         for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v)

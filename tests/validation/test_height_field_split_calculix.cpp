@@ -1,11 +1,12 @@
 // Chapter 4's conforming reference against CalculiX: the beam 0.03 x 0.06 x 0.2 m cut clean
-// through by the dome z = 0.1 + A (1 - ((x - 0.015)/0.015)^2)(1 - ((y - 0.03)/0.03)^2), and by the
-// kinked ridge z = 0.1 + A (1 - |2 x / 0.03 - 1|), A = 4 mm, meshed by split_box_along_height_field (the node layer moved onto the dome and opened along
-// it), solved by Kerf and by ccx (C3D4 and C3D10). The cut is clean through, so each part keeps
-// its own support: the base z = 0 is clamped, the top z = 0.2 is moved by (2, 0, -1) mm, and
-// gravity pulls along x. The curved layer's tets are no Kuhn tets any more and the duplicated
-// nodes are ordinary nodes to ccx: agreement says the mapped, split mesh is a valid FE mesh and
-// both codes assemble the same discrete problem on it.
+// through by the dome z = 0.1 + A (1 - ((x - 0.015)/0.015)^2)(1 - ((y - 0.03)/0.03)^2) and by the
+// kinked ridge z = 0.1 + A (1 - |2 x / 0.03 - 1|), A = 4 mm, each meshed by
+// split_box_along_height_field (the node layer moved onto the cut and opened along it) and
+// solved by Kerf and by ccx (C3D4 and C3D10). The cut is clean through, so each part keeps its
+// own support: the base z = 0 is clamped, the top z = 0.2 is moved by (2, 0, -1) mm, and gravity
+// pulls along x. The curved layer's tets are no Kuhn tets any more and the duplicated nodes are
+// ordinary nodes to ccx: agreement says the mapped, split mesh is a valid FE mesh and both codes
+// assemble the same discrete problem on it.
 //
 // Tolerances as in test_split_mesh_calculix.cpp: 1e-8 relative against CalculiX's own K and M
 // solved in double precision (the matrix route of calculix_deck.hpp), and ccx's printing
@@ -87,9 +88,10 @@ TEST_CASE("A beam split along a dome and along a ridge: Kerf agrees with Calculi
     const double max_u = s.displacement.cwiseAbs().maxCoeff();
     const double vs_matrices = relative_max_difference(u_kerf, s.displacement);
     const double vs_static = relative_max_difference(u_kerf, s.static_displacement);
-    MESSAGE(name << ", " << element << ": " << mesh.num_nodes() << " nodes, " << split.split.duplicated_nodes << " duplicated, max |u| = " << max_u
-                    << " m, opening " << opening << " m; Kerf vs ccx matrices " << vs_matrices << ", vs ccx static " << vs_static
-                    << " (ccx " << s.static_seconds << " s static, " << s.matrix_seconds << " s matrices)");
+    MESSAGE(name << ", " << element << ": " << mesh.num_nodes() << " nodes, " << split.split.duplicated_nodes
+                 << " duplicated, max |u| = " << max_u << " m, opening " << opening << " m; Kerf vs ccx matrices " << vs_matrices
+                 << ", vs ccx static " << vs_static << " (ccx " << s.static_seconds << " s static, " << s.matrix_seconds
+                 << " s matrices)");
     // The top's 2 mm against the clamped base, with nothing joining the parts: the opening is of
     // the order of the prescribed motion, far above the agreement asked for below.
     CHECK(opening > 1e-3 * max_u);

@@ -1,5 +1,5 @@
 /// @file split_box_along_height_field.hpp
-/// @brief A box mesh whose node layer follows a curved cut z = z_c + h(x, y) clean through the box, opened along it: chapter 4's conforming reference.
+/// @brief The box meshed to follow a curved cut z = z_c + h(x, y) clean through it, and opened along it: chapter 4's reference.
 #pragma once
 
 #include "kerf/cut/height_field_surface.hpp"
