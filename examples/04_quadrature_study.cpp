@@ -236,118 +236,18 @@ struct Result {
   }
 };
 
-/// A WORKAROUND, to go once tet_pieces.cpp is fixed: split_tet_by_triangles glues cells
-/// through every uncovered face, also through faces of no area that a split leaves along a
-/// line where two cut triangles meet at an angle (the kink's line, every edge of the sphere's
-/// mesh inside the tet): the two sides of the cut then touch along an edge only, yet become one
-/// piece, and the tet counts as "partially cut". Here we glue the cells again through the
-/// uncovered faces whose area exceeds 1e-12 of the tet's diameter squared and rebuild the
-/// pieces' lists, volumes and boundaries (faces of no area hold no integral). Corner pieces are
-/// not rebuilt; the study finds its piece by a point (blue_piece).
-kerf::TetPieces glue_through_faces_with_area(kerf::TetPieces pieces, double diameter) {
-  const int n = static_cast<int>(pieces.cells.size());
-  std::vector<int> parent(static_cast<std::size_t>(n));
-  for (int c = 0; c < n; ++c) parent[static_cast<std::size_t>(c)] = c;
-  const auto root = [&](int c) {
-    while (parent[static_cast<std::size_t>(c)] != c) c = parent[static_cast<std::size_t>(c)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(c)])];
-    return c;
-  };
-  const double least_area = 1e-12 * diameter * diameter;
-  for (int c = 0; c < n; ++c)
-    for (const kerf::CellFace& face : pieces.cells[static_cast<std::size_t>(c)].faces)
-      if (face.neighbour >= 0 && !face.covered && kerf::polygon_area_vector(face.polygon).norm() > least_area)
-        parent[static_cast<std::size_t>(root(c))] = root(face.neighbour);
-  std::vector<int> piece_of_root(static_cast<std::size_t>(n), -1);
-  pieces.pieces.clear();
-  for (int c = 0; c < n; ++c) {
-    int& p = piece_of_root[static_cast<std::size_t>(root(c))];
-    if (p < 0) {
-      p = static_cast<int>(pieces.pieces.size());
-      pieces.pieces.emplace_back();
-    }
-    pieces.cell_piece[static_cast<std::size_t>(c)] = p;
-    kerf::TetPiece& piece = pieces.pieces[static_cast<std::size_t>(p)];
-    piece.cells.push_back(c);
-    piece.volume += kerf::convex_cell_volume(pieces.cells[static_cast<std::size_t>(c)]);
-  }
-  for (int c = 0; c < n; ++c)
-    for (const kerf::CellFace& face : pieces.cells[static_cast<std::size_t>(c)].faces) {
-      const bool inner = face.neighbour >= 0 && pieces.cell_piece[static_cast<std::size_t>(face.neighbour)] == pieces.cell_piece[static_cast<std::size_t>(c)];
-      if (inner && !face.covered) continue;
-      if (face.neighbour >= 0 && !face.covered) continue; // a face of no area between two pieces
-      pieces.pieces[static_cast<std::size_t>(pieces.cell_piece[static_cast<std::size_t>(c)])].boundary.push_back(
-          {face.polygon, face.origin, face.covered});
-    }
-  pieces.state = pieces.num_pieces() > 1 ? kerf::SurfaceCutState::completely_cut : pieces.state;
-  return pieces;
-}
-
-/// The piece holding the point x (inside every face plane of one of its cells).
-int blue_piece(const kerf::TetPieces& pieces, const Eigen::Vector3d& x) {
-  for (std::size_t c = 0; c < pieces.cells.size(); ++c) {
-    bool inside = true;
-    for (const kerf::CellFace& face : pieces.cells[c].faces)
-      inside = inside && kerf::polygon_area_vector(face.polygon).dot(x - face.polygon.front()) <= 0.0;
-    if (inside) return pieces.cell_piece[c];
-  }
-  throw std::runtime_error("blue_piece: the point lies in no cell");
-}
-
-/// A SECOND WORKAROUND, for the sphere only: the tet cut by a closed CONVEX surface (the
-/// icosphere) is the tet split by each triangle's plane in turn, keeping the inside part: a
-/// convex cell (the polyhedral ball's part of the tet) and the cells cut off from it. We build
-/// those with convex_cell.hpp's split_cell, the primitive split_tet_by_triangles itself uses,
-/// because split_tet_by_triangles leaves holes in a closed surface (see the report of this
-/// study's results: a cell that straddles a triangle's plane is not split when a sliver face
-/// of the cell, of area ~1e-18, gives cell_touches a meaningless normal). Piece 0 is the inside.
-kerf::TetPieces convex_cut(const Corners& X, const std::vector<CutTriangle>& triangles) {
-  kerf::TetPieces pieces;
-  pieces.volume = 1.0 / 6.0;
-  pieces.cells.push_back(kerf::tet_cell(X));
-  int inside = 0;
-  for (std::size_t k = 0; k < triangles.size(); ++k) {
-    const auto& c = triangles[k].corners;
-    const Eigen::Vector3d n = (c[1] - c[0]).cross(c[2] - c[0]).normalized();
-    const kerf::Plane plane{n, n.dot(c[0])};
-    // Values within 1e-14 of the plane count as on it, so that a corner made by an earlier split
-    // on this plane is not split again into a sliver.
-    const auto side = [&plane](const Eigen::Vector3d& x) {
-      const double v = plane.evaluate(x);
-      return std::abs(v) < 1e-14 ? 0.0 : v;
-    };
-    const int below = kerf::split_cell(pieces.cells, inside, side, plane, {kerf::FaceOrigin::Kind::cut_plane, static_cast<int>(k)});
-    if (below >= 0) inside = below;
-  }
-  const int n_cells = static_cast<int>(pieces.cells.size());
-  pieces.cell_piece.assign(static_cast<std::size_t>(n_cells), 1);
-  pieces.cell_piece[static_cast<std::size_t>(inside)] = 0;
-  pieces.pieces.resize(2);
-  for (int c = 0; c < n_cells; ++c) {
-    kerf::TetPiece& piece = pieces.pieces[static_cast<std::size_t>(pieces.cell_piece[static_cast<std::size_t>(c)])];
-    piece.cells.push_back(c);
-    piece.volume += kerf::convex_cell_volume(pieces.cells[static_cast<std::size_t>(c)]);
-    for (kerf::CellFace& face : pieces.cells[static_cast<std::size_t>(c)].faces) {
-      face.covered = face.neighbour >= 0 && (c == inside || face.neighbour == inside);
-      if (face.neighbour >= 0 && !face.covered) continue;
-      piece.boundary.push_back({face.polygon, face.origin, face.covered});
-    }
-  }
-  pieces.state = kerf::SurfaceCutState::completely_cut;
-  return pieces;
-}
-
 std::vector<Result> run_cut(const Cut& cut, const Sizes& sizes) {
   const Corners X = unit_tet();
   kerf::TetPieces pieces;
   const double split_seconds = kerf_measure::best_time(
       [&] {
-        pieces = cut.polyhedral ? glue_through_faces_with_area(kerf::split_tet_by_triangles(X, cut.triangles), std::sqrt(2.0))
-                                : convex_cut(X, cut.triangles);
+        pieces = kerf::split_tet_by_triangles(X, cut.triangles);
       },
       sizes.repeats);
-  // Koschier's blue piece holds the corner (0,0,0); a point just inside it decides.
-  const int blue = blue_piece(pieces, Eigen::Vector3d::Constant(1e-3));
   if (pieces.num_pieces() < 2) throw std::runtime_error(cut.name + ": the cut leaves the tet in one piece");
+  // Koschier's blue piece holds the corner (0,0,0), which no cut passes through.
+  if (pieces.corner_pieces[0].size() != 1) throw std::runtime_error(cut.name + ": the cut passes through the corner (0,0,0)");
+  const int blue = pieces.corner_pieces[0].front();
   // The triangulated piece's own integrals: Gauss on its sub-tets is exact for quadratics.
   kerf::PieceRuleOptions gauss;
   const std::array<double, 4> polyhedron =
@@ -430,10 +330,7 @@ void write_markdown(const std::vector<Result>& results, int table_level, const s
      << "Cuts (examples/04_quadrature_study.cpp): planar = the corner piece x + y + z <= 0.3 (the cut one large triangle);\n"
      << "kinked = OURS, Koschier's being unknown: {x + y + z <= 0.6, z <= 0.3}, two planes meeting along x + y = 0.3, z = 0.3\n"
      << "(so K's kinked numbers are for another geometry); spherical = an icosphere of radius 0.5 about the corner (0,0,0).\n"
-     << "Geometry: planar and kinked through split_tet_by_triangles, its pieces glued again through faces with area only\n"
-     << "(a workaround: it glues through zero-area faces along the kink); the sphere through a plain convex split with\n"
-     << "convex_cell.hpp's split_cell (a workaround: split_tet_by_triangles leaves it in one piece). Both are stated in the\n"
-     << "study's source and must go once tet_pieces.cpp is fixed.\n\n"
+     << "Geometry: every cut through split_tet_by_triangles, the pieces Kerf integrates everywhere else.\n\n"
      << "| cut | h | K (24 QP) | exact | K-fit | subtets | vol. ratio | K reg. | K #QP | regular | #QP |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   const auto find = [&](const std::string& cut, int level, QuadratureRuleKind kind, int resolution) -> const Result* {
