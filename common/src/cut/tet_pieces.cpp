@@ -96,6 +96,14 @@ bool in_triangle(const Eigen::Vector3d& x, const CutTriangle& t, const Eigen::Ve
   return true;
 }
 
+// The bounding box of a cell's corners.
+Eigen::AlignedBox3d cell_box(const ConvexCell& cell) {
+  Eigen::AlignedBox3d box;
+  for (const CellFace& face : cell.faces)
+    for (const Eigen::Vector3d& x : face.polygon) box.extend(x);
+  return box;
+}
+
 int find_root(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -126,6 +134,7 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
 
   std::vector<ConvexCell>& cells = result.cells;
   cells.push_back(tet_cell(X));
+  std::vector<Eigen::AlignedBox3d> boxes{cell_box(cells.front())}; // one per cell, kept up to date
   // The tet's four faces as inward-pointing half-spaces, to clip each triangle to the tet.
   const ConvexCell tet = cells.front();
 
@@ -160,8 +169,15 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
     }
     const TrianglePlaneSide side{&T, &X, n, n.dot(T.corners[0]), tolerance};
     const Plane plane{n, n.dot(T.corners[0])};
-    std::vector<int> work(cells.size());
-    std::iota(work.begin(), work.end(), 0);
+    // Only cells whose box meets T's box can meet T: most cells of a tet that many small
+    // triangles cross are far from any one of them.
+    Eigen::AlignedBox3d triangle_box;
+    for (const Eigen::Vector3d& x : T.corners) triangle_box.extend(x);
+    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(tolerance);
+    triangle_box.extend(triangle_box.min() - margin).extend(triangle_box.max() + margin);
+    std::vector<int> work;
+    for (int c = 0; c < static_cast<int>(cells.size()); ++c)
+      if (boxes[static_cast<std::size_t>(c)].intersects(triangle_box)) work.push_back(c);
     std::vector<Eigen::Vector3d> section, above, below;
     while (!work.empty()) {
       const int c = work.back();
@@ -188,12 +204,20 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
         const int b = split_cell(cells, c, edge_sides[split_edge], edge_planes[split_edge],
                                  {FaceOrigin::Kind::edge_plane, static_cast<int>(k)});
         if (b >= 0) {
+          boxes[static_cast<std::size_t>(c)] = cell_box(cells[static_cast<std::size_t>(c)]);
+          boxes.push_back(cell_box(cells[static_cast<std::size_t>(b)]));
           work.push_back(c);
           work.push_back(b);
         }
         continue;
       }
-      if (straddles) split_cell(cells, c, side, plane, {FaceOrigin::Kind::cut_plane, static_cast<int>(k)});
+      if (straddles) {
+        const int b = split_cell(cells, c, side, plane, {FaceOrigin::Kind::cut_plane, static_cast<int>(k)});
+        if (b >= 0) {
+          boxes[static_cast<std::size_t>(c)] = cell_box(cells[static_cast<std::size_t>(c)]);
+          boxes.push_back(cell_box(cells[static_cast<std::size_t>(b)]));
+        }
+      }
     }
   }
 
