@@ -91,8 +91,8 @@ jobs=$(nproc)
 case "${1:-demo}" in
   demo)
     install_missing_packages
-    configure_and_build release --target 03_xfem_heaviside
-    ./build/release/bin/03_xfem_heaviside --out output/03_xfem_heaviside
+    configure_and_build release --target 04_cut_quadrature
+    ./build/release/bin/04_cut_quadrature --out output/04_cut_quadrature
     ;;
   test)
     install_missing_packages
