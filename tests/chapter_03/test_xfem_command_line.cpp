@@ -20,22 +20,6 @@ namespace {
 
 const std::string chapter_03 = std::string(KERF_BINARY_DIR) + "/bin/03_xfem_heaviside";
 
-// The rows of a probe output file: x, y, z, ux, uy, uz.
-std::vector<std::vector<double>> probe_rows(const std::filesystem::path& file, std::string& header) {
-  std::stringstream in(kerf_test::read_text(file));
-  std::string line;
-  std::getline(in, header);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 const std::string chapter_02 = std::string(KERF_BINARY_DIR) + "/bin/02_corotation";
 
 // Probe points 0.1 mm above and below the cut plane z = 0.1 at every (x, y), in that order.
@@ -51,7 +35,7 @@ std::string opening_probes(const std::vector<double>& xs, const std::vector<doub
 // The jumps u(above) - u(below) from a probe output of opening_probes.
 std::vector<Eigen::Vector3d> opening_jumps(const std::filesystem::path& file, std::size_t count) {
   std::string header;
-  const auto rows = probe_rows(file, header);
+  const auto rows = kerf_test::read_csv_rows(file, header);
   REQUIRE(rows.size() == 2 * count);
   std::vector<Eigen::Vector3d> jumps;
   for (std::size_t k = 0; k < count; ++k) {
@@ -180,7 +164,7 @@ TEST_CASE("xfem command line: probes in the gravity example show the jump across
   CHECK(std::filesystem::exists(dir / "beam_cut_gravity_linear.vtu"));
   CHECK(std::filesystem::exists(dir / "beam_cut_gravity_linear_pieces.vtu"));
   std::string header;
-  const auto rows = probe_rows(dir / "u.csv", header);
+  const auto rows = kerf_test::read_csv_rows(dir / "u.csv", header);
   CHECK(header == "x,y,z,ux,uy,uz");
   REQUIRE(rows.size() == 3);
   for (const auto& row : rows) REQUIRE(row.size() == 6);

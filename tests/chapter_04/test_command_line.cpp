@@ -18,21 +18,6 @@ namespace {
 const std::string chapter_04 = std::string(KERF_BINARY_DIR) + "/bin/04_cut_quadrature";
 const std::string chapter_03 = std::string(KERF_BINARY_DIR) + "/bin/03_xfem_heaviside";
 
-std::vector<std::vector<double>> csv_rows(const std::filesystem::path& file, std::string& header) {
-  std::stringstream in(kerf_test::read_text(file));
-  std::string line;
-  std::getline(in, header);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 // The demo blade's height at y: z = 0.1 + 0.01 sin(pi y / 0.06).
 double blade_z(double y) { return 0.1 + 0.01 * std::sin(M_PI * y / 0.06); }
 
@@ -74,7 +59,7 @@ TEST_CASE("the demo opens its curved cut, and the blade it writes gives the same
   CHECK(std::filesystem::exists(dir / "out" / "beam_curved_cut_pieces.vtu"));
   REQUIRE(std::filesystem::exists(dir / "out" / "blade.obj"));
   std::string header;
-  const auto rows = csv_rows(dir / "demo_probes.csv", header);
+  const auto rows = kerf_test::read_csv_rows(dir / "demo_probes.csv", header);
   CHECK(header == "x,y,z,ux,uy,uz");
   REQUIRE(rows.size() == 4);
   // In the cut (x = 0.005) the two sides part: the upper one is pulled up by the top edge.
@@ -105,7 +90,7 @@ TEST_CASE("the demo opens its curved cut, and the blade it writes gives the same
   INFO(again.err);
   REQUIRE(again.exit_status == 0);
   CHECK(again.out.empty());
-  const auto rows_again = csv_rows(dir / "scene_probes.csv", header);
+  const auto rows_again = kerf_test::read_csv_rows(dir / "scene_probes.csv", header);
   REQUIRE(rows_again.size() == rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k)
     for (std::size_t c = 3; c < 6; ++c) CHECK(rows_again[k][c] == doctest::Approx(rows[k][c]).epsilon(1e-9));
@@ -123,7 +108,7 @@ TEST_CASE("--moments-out writes every piece's moments, which add up to each cut 
   INFO(run.err);
   REQUIRE(run.exit_status == 0);
   std::string header;
-  const auto rows = csv_rows(dir / "moments.csv", header);
+  const auto rows = kerf_test::read_csv_rows(dir / "moments.csv", header);
   CHECK(header == "element,piece,volume,mx,my,mz,mxx,myy,mzz,mxy,myz,mxz");
   REQUIRE(!rows.empty());
   // Per element: the pieces' volumes add up to the tet's. The box mesher splits every cell

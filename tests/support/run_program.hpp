@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 namespace kerf_test {
 
@@ -33,6 +34,22 @@ inline ProgramResult run_program(const std::string& command, const std::filesyst
   result.out = read_text(out);
   result.err = read_text(err);
   return result;
+}
+
+/// The rows of a CSV file of numbers, its header line in `header`.
+inline std::vector<std::vector<double>> read_csv_rows(const std::filesystem::path& file, std::string& header) {
+  std::stringstream in(read_text(file));
+  std::string line;
+  std::getline(in, header);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream cells(line);
+    std::string cell;
+    std::vector<double> row;
+    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
 }
 
 /// Writes `text` to `file`, creating its folder.

@@ -17,12 +17,7 @@ Eigen::VectorXd solve_linear_static(const TetMesh& mesh, const LinearMaterial& m
   SparseAssembler assembler(mesh.tets, dofs);
   Eigen::VectorXd rhs = dofs.restrict_to_free(f);
   assemble_linear_stiffness(mesh, material, assembler, rhs);
-  auto solver = make_linear_solver(solver_settings);
-  solver->analyze_pattern(assembler.matrix());
-  solver->factorize(assembler.matrix());
-  Eigen::VectorXd u_free = Eigen::VectorXd::Zero(dofs.num_free);
-  solver->solve(rhs, u_free);
-  return dofs.expand(u_free);
+  return dofs.expand(solve_once(assembler.matrix(), rhs, solver_settings));
 }
 
 } // namespace kerf

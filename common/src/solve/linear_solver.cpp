@@ -83,6 +83,15 @@ private:
 
 } // namespace
 
+Eigen::VectorXd solve_once(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, const SolverSettings& settings) {
+  auto solver = make_linear_solver(settings);
+  solver->analyze_pattern(A);
+  solver->factorize(A);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  solver->solve(b, x);
+  return x;
+}
+
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& settings) {
   if (settings.type == "cholmod") return std::make_unique<CholmodSolver>(settings.ordering);
   if (settings.type == "cg-cholmod") return std::make_unique<ReusedFactorisationCg>(settings.tolerance, settings.refresh_iterations,

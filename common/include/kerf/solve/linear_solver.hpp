@@ -68,4 +68,8 @@ public:
 /// Makes the solver named in `settings` (std::invalid_argument for an unknown name).
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& settings);
 
+/// A x = b once: make the solver, analyse, factorise, solve (x starts from 0), what every
+/// static solve of chapters 1, 3 and 4 does with its assembled K_ff.
+Eigen::VectorXd solve_once(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, const SolverSettings& settings);
+
 } // namespace kerf
