@@ -92,7 +92,8 @@ TEST_CASE("a cut that ends inside the mesh enriches no node whose support its fr
     if (pieces.state(t) != kerf::SurfaceCutState::partially_cut) continue;
     for (int a = 0; a < 4; ++a) CHECK(enrichment.enrichments_of(mesh.tets(t, a)) == 0);
   }
-  // Every enriched node's support lies where the cut is: x <= 0.6 + one cell (0.25).
+  // Every enriched node lies where the cut is: its support must be crossed completely, so the
+  // node is at most at the front x = 0.6 (here no node between 0.5 and 0.6 exists: cells of 0.25).
   for (const int i : enriched_nodes(enrichment)) CHECK(mesh.nodes(i, 0) <= 0.6);
 }
 

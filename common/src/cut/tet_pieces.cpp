@@ -76,12 +76,18 @@ std::vector<Eigen::Vector3d> keep_below(const std::vector<Eigen::Vector3d>& poly
   return kept;
 }
 
-// Whether a face has more than round-off area: (1e-12 d)^2. A face below it is a sliver that a
-// split left along a line (where two cut planes meet at an angle, or a plane grazes an edge):
-// its normal is noise, it bounds nothing the cell's other faces do not, and no material joins
-// two cells through it.
-bool has_area(const CellFace& face, double tolerance) {
-  return face.polygon.size() >= 3 && polygon_area_vector(face.polygon).norm() > tolerance * tolerance;
+// Whether a face is more than a sliver: wider than the snap (1e-12 d), its width taken as its
+// area over its longest edge. A narrower face is one the snap cannot tell apart from a line: a split left it where two cut planes meet at an angle, where a
+// plane grazes an edge, or round a vertex of the cut where several triangles' edge planes meet
+// (an icosphere's vertices leave faces of 1e-22 d^2 there). Its normal is noise, it bounds
+// nothing the cell's other faces do not, and no material joins two cells through it: gluing
+// through it let the inside of a fine icosphere leak to the outside.
+bool has_area(const CellFace& face, double snap) {
+  if (face.polygon.size() < 3) return false;
+  double longest = 0.0;
+  for (std::size_t k = 0; k < face.polygon.size(); ++k)
+    longest = std::max(longest, (face.polygon[(k + 1) % face.polygon.size()] - face.polygon[k]).norm());
+  return polygon_area_vector(face.polygon).norm() > snap * longest;
 }
 
 // Whether point x lies in the closed triangle t, given that it lies in t's plane: its three
@@ -208,8 +214,10 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
           boxes.push_back(cell_box(cells[static_cast<std::size_t>(b)]));
           work.push_back(c);
           work.push_back(b);
+          continue;
         }
-        continue;
+        // The section crossed the edge's line by round-off only (the cell's corners, which the
+        // split looks at, do not): the cell is inside that edge, go on as for a cell inside T.
       }
       if (straddles) {
         const int b = split_cell(cells, c, side, plane, {FaceOrigin::Kind::cut_plane, static_cast<int>(k)});

@@ -346,13 +346,17 @@ std::vector<UnheldPiece> cut_xfem_unheld_pieces(const CutXfemModel& model, const
 Eigen::Vector3d CutXfemModel::displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const {
   const Corners X = tet_corners(mesh_, t);
   const Eigen::Vector3d xi = corner_jacobian(X).inverse() * (x - X.row(0).transpose());
-  const double diameter = (X.row(1) - X.row(0)).norm() + (X.row(2) - X.row(0)).norm() + (X.row(3) - X.row(0)).norm();
   int p = 0;
   if (split(t) && pieces_.num_pieces(t) > 1) {
     const TetPieces& tp = pieces_.tets[static_cast<std::size_t>(pieces_.entry[static_cast<std::size_t>(t)])];
-    const std::vector<int> found = pieces_containing(tp, x, 1e-12 * diameter);
+    const std::vector<int> found = pieces_containing(tp, x, 1e-12 * tp.diameter);
     if (found.empty()) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    // A point on the cut lies in two or more pieces: take one above a cut (H(0) = +1, as for
+    // the home part of a node on the cut, surface_enrichment.hpp), else the first.
     p = found.front();
+    for (const int q : found)
+      for (const PieceBoundaryPolygon& b : tp.pieces[static_cast<std::size_t>(q)].boundary)
+        if (b.on_cut && b.cut_side > 0 && p == found.front()) p = q;
   }
   const Eigen::MatrixX3d u_p = phantom_displacements(u, t, p);
   if (mesh_.order() == 1) return (tet4_shape(xi).transpose() * u_p).transpose();

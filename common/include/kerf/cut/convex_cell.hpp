@@ -132,6 +132,10 @@ void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Value& val
   if (below.size() < 3 || !any_below) below.clear();
 }
 
+/// The area vector of a planar polygon (Newell): its length is the area, it points along the
+/// normal for which the corners run counter-clockwise.
+Eigen::Vector3d polygon_area_vector(const std::vector<Eigen::Vector3d>& polygon);
+
 /// Orders the corners of a convex polygon that lies in a plane with normal n counter-clockwise
 /// seen from the side n points to (by angle about their mean). Exactly equal points must have
 /// been removed.
@@ -155,6 +159,13 @@ int split_cell(std::vector<ConvexCell>& cells, int c, const Value& value, const 
     // The section's corners are the points of the faces on the plane: old corners of value 0
     // and new crossings.
     split_polygon(face.polygon, value, part_above, part_below, &section);
+    // A face with every corner on the plane (a cell convex only up to the snap, whose face lies
+    // within the snap of a plane that still crosses the cell) would go into neither half. It
+    // bounds the half on the side away from which it faces: below if its outward normal points
+    // up. Its neighbour's copy faces the other way and follows the same decision below.
+    const bool on_plane = part_above.empty() && part_below.empty() && face.polygon.size() >= 3;
+    const bool to_below = on_plane && polygon_area_vector(face.polygon).dot(plane.normal) > 0.0;
+    if (on_plane) (to_below ? part_below : part_above) = face.polygon;
     if (!part_above.empty()) above.faces.push_back({part_above, face.neighbour, face.origin, face.covered, face.cut_side});
     if (!part_below.empty()) below.faces.push_back({part_below, face.neighbour, face.origin, face.covered, face.cut_side});
     // The neighbour's face towards c is this face walked backwards: split it the same way.
@@ -163,7 +174,9 @@ int split_cell(std::vector<ConvexCell>& cells, int c, const Value& value, const 
     for (std::size_t k = 0; k < theirs.size(); ++k) {
       if (theirs[k].neighbour != c) continue;
       split_polygon(theirs[k].polygon, value, part_above, part_below);
-      if (part_above.empty()) {
+      if (on_plane) {
+        if (to_below) theirs[k].neighbour = b;
+      } else if (part_above.empty()) {
         theirs[k].neighbour = b;
       } else if (!part_below.empty()) {
         CellFace lower{part_below, b, theirs[k].origin, theirs[k].covered, theirs[k].cut_side};
@@ -181,10 +194,6 @@ int split_cell(std::vector<ConvexCell>& cells, int c, const Value& value, const 
   cells.push_back(std::move(below));
   return b;
 }
-
-/// The area vector of a planar polygon (Newell): its length is the area, it points along the
-/// normal for which the corners run counter-clockwise.
-Eigen::Vector3d polygon_area_vector(const std::vector<Eigen::Vector3d>& polygon);
 
 /// The volume of a closed convex cell, (1/3) sum over faces of (x_f . A_f), with x_f a corner
 /// of the face and A_f its outward area vector (the divergence theorem for div x = 3).

@@ -16,8 +16,9 @@ namespace kerf {
 /// the phantom elements' masses over their pieces (eqs. 77-80 with Psi in {0, 1} on each piece).
 /// N_a N_b has degree 2 on a Tet4 piece and 4 on a Tet10 piece (notes 4.4): `rule` is asked for
 /// that degree on every piece of a split tet, and must be exact for it (the "exact" and
-/// "subtets" rules are; volume ratios are not, even for a Tet4). Tets integrated whole use
-/// chapter 1's element masses.
+/// "subtets" rules are; volume ratios are not, even for a Tet4; Koschier's "moment_fitting" is
+/// built for degrees 1 and 2 only and refuses 4). Tets integrated whole use chapter 1's
+/// element masses.
 Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule);
 
 } // namespace kerf

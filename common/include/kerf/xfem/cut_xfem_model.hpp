@@ -67,8 +67,8 @@ public:
   void assemble_linear_stiffness(SparseAssembler& assembler, Eigen::VectorXd& rhs_free) const;
   /// The body-force load sum_p T_p^T int_p N^T rho g (3 num_dof_nodes()).
   Eigen::VectorXd gravity_load(double density, const Eigen::Vector3d& g) const;
-  /// The displacement at x (m) in tet t, on the piece that holds x (the first, if x lies on the
-  /// cut); NaN if x is not in tet t.
+  /// The displacement at x (m) in tet t, on the piece that holds x (one above the cut, if x lies
+  /// on the cut); NaN if x is not in tet t.
   Eigen::Vector3d displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const;
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
   Eigen::MatrixX3d phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const;
