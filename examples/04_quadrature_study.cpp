@@ -199,10 +199,7 @@ Sizes study_sizes(bool quick) {
     s.rules.push_back({QuadratureRuleKind::regular, 20});
     s.repeats = {1, 0.0, 0.2};
   } else {
-    // Levels 5 and 6 are out of reach of split_tet_by_triangles today: its cells multiply
-    // (26301 at level 4, 195548 at level 5, where a hole also leaves the tet in one piece; see
-    // chapter 4's results), so the table stops at level 4.
-    s.sphere_levels = {1, 2, 3, 4};
+    s.sphere_levels = {1, 2, 3, 4, 5, 6};
     for (int n : {5, 10, 20, 40}) s.rules.push_back({QuadratureRuleKind::lattice, n});
     for (int n : {25, 50, 100}) s.rules.push_back({QuadratureRuleKind::regular, n});
     s.repeats = {3, 0.2, 5.0};

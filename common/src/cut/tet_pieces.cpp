@@ -193,17 +193,19 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
       const bool straddles = cell_side(cells[c], side) == 0;
       for (const CellFace& face : cells[c].faces) split_polygon(face.polygon, side, above, below, &section);
       if (section.size() < 3) continue; // the plane misses the cell, or touches an edge or a corner
+      // Look at all three edges before splitting: a section beyond any one edge's line does not
+      // meet T, whatever the other two say, and splitting it would only fragment the cell.
       int split_edge = -1;
       bool outside = false;
-      for (int e = 0; e < 3 && split_edge < 0 && !outside; ++e) {
+      for (int e = 0; e < 3 && !outside; ++e) {
         bool in = false, out = false;
         for (const Eigen::Vector3d& x : section) {
           const double v = edge_sides[e](x);
           in = in || v > 0.0;
           out = out || v < 0.0;
         }
-        if (in && out) split_edge = e;
-        else if (!in) outside = true; // the section lies on or beyond this edge's line
+        if (!in) outside = true; // the section lies on or beyond this edge's line
+        else if (out && split_edge < 0) split_edge = e;
       }
       if (outside) continue;
       if (split_edge >= 0) {
