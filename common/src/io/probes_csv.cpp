@@ -2,10 +2,12 @@
 
 #include "kerf/app/input_error.hpp"
 #include "kerf/fem/evaluate_displacement.hpp"
+#include "kerf/mesh/point_locator.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -81,6 +83,35 @@ void write_probes_csv(const std::filesystem::path& file, const Eigen::MatrixXd& 
     }
   }
   if (std::fclose(out) != 0) throw InputError(file.string(), "file", "cannot write the probe output");
+}
+
+Eigen::MatrixXd evaluate_tet_field_at(const TetMesh& mesh, const TetField& field, const Eigen::MatrixXd& points,
+                                      Eigen::Index& num_outside) {
+  const PointLocator locator(mesh);
+  Eigen::MatrixXd values(points.rows(), 3);
+  num_outside = 0;
+  for (Eigen::Index p = 0; p < points.rows(); ++p) {
+    const Eigen::Vector3d x = points.row(p).transpose();
+    const PointLocation location = locator.locate(x);
+    if (location.tet < 0) {
+      values.row(p).setConstant(std::numeric_limits<double>::quiet_NaN());
+      ++num_outside;
+      continue;
+    }
+    values.row(p) = field(location.tet, x).transpose();
+  }
+  return values;
+}
+
+void sample_tet_field_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out,
+                             const TetMesh& mesh, const TetField& field, std::ostream* warnings) {
+  const Eigen::MatrixXd points = read_probes_csv(probes_in);
+  Eigen::Index num_outside = 0;
+  const Eigen::MatrixXd values = evaluate_tet_field_at(mesh, field, points, num_outside);
+  if (num_outside > 0 && warnings)
+    *warnings << "warning: " << probes_in.string() << ": " << num_outside << " of " << points.rows()
+              << " probe points lie outside the mesh; their displacement is written as nan\n";
+  write_probes_csv(probes_out, points, values);
 }
 
 void sample_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out, const TetMesh& mesh,

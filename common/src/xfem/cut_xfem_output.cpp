@@ -3,7 +3,7 @@
 #include "kerf/app/input_error.hpp"
 #include "kerf/io/probes_csv.hpp"
 #include "kerf/io/write_vtu.hpp"
-#include "kerf/mesh/point_locator.hpp"
+#include "kerf/quadrature/piece_quadrature_rule.hpp"
 
 #include <array>
 #include <cstdio>
@@ -13,33 +13,11 @@
 
 namespace kerf {
 
-Eigen::MatrixXd cut_xfem_displacement_at(const CutXfemModel& model, const Eigen::VectorXd& u, const Eigen::MatrixXd& points,
-                                         Eigen::Index& num_outside) {
-  const PointLocator locator(model.mesh());
-  Eigen::MatrixXd values(points.rows(), 3);
-  num_outside = 0;
-  for (Eigen::Index p = 0; p < points.rows(); ++p) {
-    const Eigen::Vector3d x = points.row(p).transpose();
-    const PointLocation location = locator.locate(x);
-    if (location.tet < 0) {
-      values.row(p).setConstant(std::numeric_limits<double>::quiet_NaN());
-      ++num_outside;
-      continue;
-    }
-    values.row(p) = model.displacement_at(u, location.tet, x).transpose();
-  }
-  return values;
-}
-
 void sample_cut_xfem_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out,
                             const CutXfemModel& model, const Eigen::VectorXd& u, std::ostream* warnings) {
-  const Eigen::MatrixXd points = read_probes_csv(probes_in);
-  Eigen::Index num_outside = 0;
-  const Eigen::MatrixXd values = cut_xfem_displacement_at(model, u, points, num_outside);
-  if (num_outside > 0 && warnings)
-    *warnings << "warning: " << probes_in.string() << ": " << num_outside << " of " << points.rows()
-              << " probe points lie outside the mesh; their displacement is written as nan\n";
-  write_probes_csv(probes_out, points, values);
+  sample_tet_field_probes(
+      probes_in, probes_out, model.mesh(), [&](Eigen::Index t, const Eigen::Vector3d& x) { return model.displacement_at(u, t, x); },
+      warnings);
 }
 
 void write_cut_xfem_vtu(const std::filesystem::path& file, const CutXfemModel& model, const Eigen::VectorXd& u) {
@@ -129,14 +107,7 @@ void write_piece_moments_csv(const std::filesystem::path& file, const TetMesh& m
       // The moments are of degree <= 2: a rule of the model's degree is exact for them if it
       // is exact at all (Tet4's degree 1 is raised to 2 here).
       const PieceQuadratureRule r = rule(X, tp, p, std::max(degree, 2));
-      std::array<double, 10> m{};
-      for (std::size_t q = 0; q < r.points.size(); ++q) {
-        const Eigen::Vector3d& x = r.points[q];
-        const double w = r.weights[q];
-        const std::array<double, 10> f{1.0, x.x(), x.y(), x.z(), x.x() * x.x(), x.y() * x.y(), x.z() * x.z(),
-                                       x.x() * x.y(), x.y() * x.z(), x.x() * x.z()};
-        for (std::size_t k = 0; k < 10; ++k) m[k] += w * f[k];
-      }
+      const Eigen::Matrix<double, 10, 1> m = piece_moments(r);
       std::snprintf(line, sizeof line, "%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, p, m[0], m[1], m[2],
                     m[3], m[4], m[5], m[6], m[7], m[8], m[9]);
       out << line;

@@ -35,31 +35,15 @@ Eigen::Vector3d xfem_displacement(const XfemModel& model, const Eigen::VectorXd&
 
 Eigen::MatrixXd xfem_displacement_at(const XfemModel& model, const Eigen::VectorXd& u, const Eigen::MatrixXd& points,
                                      Eigen::Index& num_outside) {
-  const PointLocator locator(model.mesh());
-  Eigen::MatrixXd values(points.rows(), 3);
-  num_outside = 0;
-  for (Eigen::Index p = 0; p < points.rows(); ++p) {
-    const Eigen::Vector3d x = points.row(p).transpose();
-    const PointLocation location = locator.locate(x);
-    if (location.tet < 0) {
-      values.row(p).setConstant(std::numeric_limits<double>::quiet_NaN());
-      ++num_outside;
-      continue;
-    }
-    values.row(p) = xfem_displacement(model, u, location.tet, x).transpose();
-  }
-  return values;
+  return evaluate_tet_field_at(
+      model.mesh(), [&](Eigen::Index t, const Eigen::Vector3d& x) { return xfem_displacement(model, u, t, x); }, points, num_outside);
 }
 
 void sample_xfem_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out, const XfemModel& model,
                         const Eigen::VectorXd& u, std::ostream* warnings) {
-  const Eigen::MatrixXd points = read_probes_csv(probes_in);
-  Eigen::Index num_outside = 0;
-  const Eigen::MatrixXd values = xfem_displacement_at(model, u, points, num_outside);
-  if (num_outside > 0 && warnings)
-    *warnings << "warning: " << probes_in.string() << ": " << num_outside << " of " << points.rows()
-              << " probe points lie outside the mesh; their displacement is written as nan\n";
-  write_probes_csv(probes_out, points, values);
+  sample_tet_field_probes(
+      probes_in, probes_out, model.mesh(), [&](Eigen::Index t, const Eigen::Vector3d& x) { return xfem_displacement(model, u, t, x); },
+      warnings);
 }
 
 void write_xfem_vtu(const std::filesystem::path& file, const XfemModel& model, const Eigen::VectorXd& u) {

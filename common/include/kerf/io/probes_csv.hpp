@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <functional>
 #include <ostream>
 
 #include "kerf/mesh/tet_mesh.hpp"
@@ -24,5 +25,19 @@ void write_probes_csv(const std::filesystem::path& file, const Eigen::MatrixXd& 
 /// outside the mesh are counted in one warning line.
 void sample_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out, const TetMesh& mesh,
                    const Eigen::VectorXd& u, std::ostream* warnings);
+
+/// A displacement field known tet by tet: its value at x (m) in tet t. Cut bodies (chapters 3
+/// and 4) evaluate it on the piece of t that holds x.
+using TetField = std::function<Eigen::Vector3d(Eigen::Index t, const Eigen::Vector3d& x)>;
+
+/// `field` at each point (rows of `points`), in the tet of `mesh` that holds it; NaN rows for
+/// points outside the mesh, counted in num_outside.
+Eigen::MatrixXd evaluate_tet_field_at(const TetMesh& mesh, const TetField& field, const Eigen::MatrixXd& points,
+                                      Eigen::Index& num_outside);
+
+/// The probe contract for a field known tet by tet (a cut body): reads `probes_in`, writes
+/// `field` there to `probes_out`, and counts the points outside the mesh in one warning line.
+void sample_tet_field_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out,
+                             const TetMesh& mesh, const TetField& field, std::ostream* warnings);
 
 } // namespace kerf

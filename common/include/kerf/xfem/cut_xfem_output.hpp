@@ -10,11 +10,6 @@
 
 namespace kerf {
 
-/// The displacement at each point (rows of `points`), on the piece that holds it; NaN rows
-/// for points outside the mesh, counted in num_outside.
-Eigen::MatrixXd cut_xfem_displacement_at(const CutXfemModel& model, const Eigen::VectorXd& u, const Eigen::MatrixXd& points,
-                                         Eigen::Index& num_outside);
-
 /// --probes IN --probes-out OUT for a cut body (DESIGN.md's contract): a warning counts the
 /// points outside the mesh.
 void sample_cut_xfem_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out,
