@@ -1,6 +1,7 @@
 // The consistent mass of a Tet10 body cut by a kinked surface (xfem/cut_xfem_mass.hpp): the
 // total mass, the mass and the first moment of each part the cut separates, exact with a rule of
 // degree 4 on the pieces and visibly not with one of degree 2.
+#include "chapter_04/ridge_cut.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/mesh/box_mesh.hpp"
@@ -20,39 +21,13 @@ namespace {
 
 const kerf::LinearMaterial material{1000.0, 0.3, 1200.0};
 
-// The ridge z = 0.45 + 0.1 (1 - |2x - 1|) across the unit cube (as in test_cut_xfem_model.cpp).
-double ridge(double x) { return 0.45 + 0.1 * (1.0 - std::abs(2.0 * x - 1.0)); }
-kerf::TriangleSurface ridge_surface() {
-  kerf::TriangleSurface s;
-  s.vertices.resize(6, 3);
-  const double xs[3] = {-0.5, 0.5, 1.5};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 2; ++j) s.vertices.row(2 * i + j) << xs[i], j == 0 ? -0.5 : 1.5, ridge(xs[i]);
-  s.triangles.resize(4, 3);
-  s.triangles << 0, 2, 3, 0, 3, 1, 2, 4, 5, 2, 5, 3;
-  return s;
-}
-
-// A point of piece p of tet t: the mean of its first cell's corners (or the tet's centroid).
-Eigen::Vector3d point_in_piece(const kerf::TetMesh& mesh, const kerf::MeshPieces& pieces, Eigen::Index t, int p) {
-  const int e = pieces.entry[static_cast<std::size_t>(t)];
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  if (e < 0 || pieces.num_pieces(t) == 1) {
-    for (int a = 0; a < 4; ++a) x += mesh.nodes.row(mesh.tets(t, a)).transpose() / 4.0;
-    return x;
-  }
-  const kerf::TetPieces& tp = pieces.tets[static_cast<std::size_t>(e)];
-  int count = 0;
-  for (const kerf::CellFace& f : tp.cells[static_cast<std::size_t>(tp.pieces[static_cast<std::size_t>(p)].cells.front())].faces)
-    for (const Eigen::Vector3d& y : f.polygon) x += y, ++count;
-  return x / count;
-}
+using ridge_cut::point_in_piece;
 
 } // namespace
 
 TEST_CASE("the Tet10 XFEM mass gives each part of a cut body its mass and first moment exactly") {
   const kerf::TetMesh mesh = kerf::tet10_from_tet4(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 3}));
-  const kerf::CutSurfaces cuts({ridge_surface()});
+  const kerf::CutSurfaces cuts({ridge_cut::surface()});
   const kerf::MeshPieces pieces = kerf::cut_mesh_into_pieces(mesh, cuts);
   const kerf::SurfaceEnrichment enrichment = kerf::make_surface_enrichment(mesh, pieces);
   const kerf::CutXfemModel model(mesh, material, pieces, enrichment, [](const auto&, const auto& p, int piece, int degree) {
@@ -67,7 +42,7 @@ TEST_CASE("the Tet10 XFEM mass gives each part of a cut body its mass and first 
       for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
         for (int p = 0; p < (model.split(t) ? pieces.num_pieces(t) : 1); ++p) {
           const Eigen::Vector3d y = point_in_piece(mesh, pieces, t, p);
-          const bool is_above = y.z() > ridge(y.x());
+          const bool is_above = ridge_cut::side_of(y) > 0;
           for (int a = 0; a < 10; ++a) {
             const int node = model.phantom_node(t, p, a);
             const Eigen::Vector3d x = mesh.nodes.row(mesh.tets(t, a)).transpose();

@@ -2,6 +2,7 @@
 // chapter 1's solve; a Tet10 mesh cut by a kinked surface reproduces a quadratic field exactly;
 // pieces moved rigidly, each its own way, feel no force (linear and corotated, Tet4 and Tet10);
 // and for a plane cut clean through a Tet4 mesh it is chapter 3's solution.
+#include "chapter_04/ridge_cut.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/fem/assemble_loads.hpp"
@@ -30,42 +31,8 @@ namespace {
 
 const kerf::LinearMaterial material{1000.0, 0.3, 1.0};
 
-// The kinked surface z = 0.45 + 0.1 (1 - |2x - 1|) over x, y in [-0.5, 1.5]: a ridge along
-// x = 0.5 that crosses the unit cube clean through, four triangles facing +z.
-double kink_height(const Eigen::Vector3d& x) { return 0.45 + 0.1 * (1.0 - std::abs(2.0 * x.x() - 1.0)); }
-kerf::TriangleSurface kinked_surface() {
-  kerf::TriangleSurface s;
-  s.vertices.resize(6, 3);
-  const double xs[3] = {-0.5, 0.5, 1.5};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 2; ++j) {
-      const Eigen::Vector3d p(xs[i], j == 0 ? -0.5 : 1.5, 0.0);
-      s.vertices.row(2 * i + j) << p.x(), p.y(), kink_height(p);
-    }
-  // Vertex 2 i + j at (x_i, y_j): the quads (i, i + 1) split along a diagonal, counter-clockwise from +z.
-  s.triangles.resize(4, 3);
-  s.triangles << 0, 2, 3, 0, 3, 1, 2, 4, 5, 2, 5, 3;
-  return s;
-}
-
-// The side of a point: +1 above the kinked surface.
-int side_of(const Eigen::Vector3d& x) { return x.z() > kink_height(x) ? 1 : -1; }
-
-// A point inside piece p of tet t (the mean of its first cell's corners), or the tet's centroid.
-Eigen::Vector3d point_in_piece(const kerf::TetMesh& mesh, const kerf::MeshPieces& pieces, Eigen::Index t, int p) {
-  const int e = pieces.entry[static_cast<std::size_t>(t)];
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  if (e < 0) {
-    for (int a = 0; a < 4; ++a) x += mesh.nodes.row(mesh.tets(t, a)).transpose() / 4.0;
-    return x;
-  }
-  const kerf::TetPieces& tp = pieces.tets[static_cast<std::size_t>(e)];
-  const kerf::ConvexCell& cell = tp.cells[static_cast<std::size_t>(tp.pieces[static_cast<std::size_t>(p)].cells.front())];
-  int count = 0;
-  for (const kerf::CellFace& f : cell.faces)
-    for (const Eigen::Vector3d& y : f.polygon) x += y, ++count;
-  return x / count;
-}
+using ridge_cut::point_in_piece;
+using ridge_cut::side_of;
 
 // Sub-tetrahedra with Gauss rules of the degree asked for: exact for every polynomial integrand.
 kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece, int degree) {
@@ -116,7 +83,7 @@ std::vector<std::pair<Eigen::Index, Eigen::Vector3d>> sample_points(const kerf::
     b /= b.sum();
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
     for (int a = 0; a < 4; ++a) x += b[a] * mesh.nodes.row(mesh.tets(t, a)).transpose();
-    if (std::abs(x.z() - kink_height(x)) > 0.02) points.emplace_back(t, x);
+    if (std::abs(x.z() - ridge_cut::height(x)) > 0.02) points.emplace_back(t, x);
   }
   return points;
 }
@@ -151,7 +118,7 @@ TEST_CASE("a Tet10 mesh cut by a kinked surface reproduces a quadratic field exa
   CAPTURE(cut);
   CAPTURE(degree);
   std::vector<kerf::TriangleSurface> surfaces;
-  if (cut) surfaces.push_back(kinked_surface());
+  if (cut) surfaces.push_back(ridge_cut::surface());
   const kerf::PieceRuleFunction rule = [degree](const Eigen::Matrix<double, 4, 3>& X, const kerf::TetPieces& p, int piece, int) {
     return subtets(X, p, piece, degree);
   };
@@ -195,7 +162,7 @@ TEST_CASE("pieces moved rigidly, each its own way, feel no force") {
     CAPTURE(order);
     kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 4});
     if (order == 2) mesh = kerf::tet10_from_tet4(mesh);
-    CutBody body(std::move(mesh), {kinked_surface()});
+    CutBody body(std::move(mesh), {ridge_cut::surface()});
     // Above: turned by 60 degrees about x and lifted; below: turned by -35 degrees about z.
     const Eigen::Matrix3d R_plus = Eigen::AngleAxisd(M_PI / 3.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
     const Eigen::Matrix3d R_minus = Eigen::AngleAxisd(-0.61, Eigen::Vector3d::UnitZ()).toRotationMatrix();
