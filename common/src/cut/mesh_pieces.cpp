@@ -3,55 +3,82 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kerf {
 
 namespace {
 
-// A polygon of a tet's face that belongs to one piece.
+// A polygon of a tet's face that belongs to one piece (pointing into the tet's cells, or to
+// the tet's own face for a tet without an entry).
 struct FacePolygon {
   int piece = 0;
   bool covered = false;
-  std::vector<Eigen::Vector3d> polygon;
+  const std::vector<Eigen::Vector3d>* polygon = nullptr;
 };
 
-// The polygons into which tet t's cells divide its face opposite corner a.
-std::vector<FacePolygon> face_polygons(const TetMesh& mesh, const MeshPieces& pieces, Eigen::Index t, int a) {
+// The polygons into which tet t's cells divide its face opposite corner a, appended to `found`
+// (cleared first). `whole` receives the face itself for a tet without an entry.
+void face_polygons(const TetMesh& mesh, const MeshPieces& pieces, Eigen::Index t, int a, std::vector<Eigen::Vector3d>& whole,
+                   std::vector<FacePolygon>& found) {
+  found.clear();
   const int e = pieces.entry[static_cast<std::size_t>(t)];
   if (e < 0) {
-    std::vector<Eigen::Vector3d> triangle;
+    whole.clear();
     for (int k = 0; k < 4; ++k)
-      if (k != a) triangle.push_back(mesh.nodes.row(mesh.tets(t, k)).transpose());
-    return {{0, false, triangle}};
+      if (k != a) whole.push_back(mesh.nodes.row(mesh.tets(t, k)).transpose());
+    found.push_back({0, false, &whole});
+    return;
   }
   const TetPieces& tet = pieces.tets[static_cast<std::size_t>(e)];
-  std::vector<FacePolygon> found;
   for (std::size_t c = 0; c < tet.cells.size(); ++c)
     for (const CellFace& face : tet.cells[c].faces)
       if (face.neighbour < 0 && face.origin.kind == FaceOrigin::Kind::tet_face && face.origin.index == a)
-        found.push_back({tet.cell_piece[c], face.covered, face.polygon});
-  return found;
+        found.push_back({tet.cell_piece[c], face.covered, &face.polygon});
 }
 
 // The area in which two convex polygons of one plane overlap: `a` clipped to the inner side of
-// every edge of `b` (Sutherland-Hodgman in the plane).
-double overlap_area(std::vector<Eigen::Vector3d> a, const std::vector<Eigen::Vector3d>& b) {
+// every edge of `b` (Sutherland-Hodgman in the plane). `b` may run either way round: its own
+// area vector says which side of its edges is inside. `work` and `kept` are scratch space,
+// kept by the caller so that the many small clippings of a cut allocate nothing.
+double overlap_area(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, std::vector<Eigen::Vector3d>& work,
+                    std::vector<Eigen::Vector3d>& kept) {
   const Eigen::Vector3d n = polygon_area_vector(b).normalized();
-  for (std::size_t k = 0; k < b.size() && a.size() >= 3; ++k) {
+  work = a;
+  for (std::size_t k = 0; k < b.size() && work.size() >= 3; ++k) {
     const Eigen::Vector3d& p = b[k];
     const Eigen::Vector3d& q = b[(k + 1) % b.size()];
     const auto inside = [&](const Eigen::Vector3d& x) { return (q - p).cross(x - p).dot(n); };
-    std::vector<Eigen::Vector3d> kept;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const Eigen::Vector3d& x = a[i];
-      const Eigen::Vector3d& y = a[(i + 1) % a.size()];
+    kept.clear();
+    for (std::size_t i = 0; i < work.size(); ++i) {
+      const Eigen::Vector3d& x = work[i];
+      const Eigen::Vector3d& y = work[(i + 1) % work.size()];
       const double sx = inside(x), sy = inside(y);
       if (sx >= 0.0) kept.push_back(x);
       if ((sx > 0.0 && sy < 0.0) || (sx < 0.0 && sy > 0.0)) kept.push_back(x + sx / (sx - sy) * (y - x));
     }
-    a = std::move(kept);
+    std::swap(work, kept);
   }
-  return a.size() < 3 ? 0.0 : polygon_area_vector(a).norm();
+  return work.size() < 3 ? 0.0 : polygon_area_vector(work).norm();
+}
+
+// Whether the line of one edge of convex polygon `a` has all of `b` on its outer side, up to
+// `slack` (m): then a and b overlap at most in a strip of that width along the line. Either
+// polygon may run either way round (a's own area vector tells inside from outside).
+bool edge_separates(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, double slack) {
+  const Eigen::Vector3d n = polygon_area_vector(a).normalized();
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const Eigen::Vector3d& p = a[k];
+    const Eigen::Vector3d inward = n.cross(a[(k + 1) % a.size()] - p).normalized();
+    if (std::all_of(b.begin(), b.end(), [&](const Eigen::Vector3d& x) { return inward.dot(x - p) <= slack; })) return true;
+  }
+  return false;
+}
+
+// Whether two polygons have exactly the same corners (in any order).
+bool same_corners(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  if (a.size() != b.size() || a.size() < 3) return false;
+  return std::all_of(a.begin(), a.end(), [&](const Eigen::Vector3d& x) { return std::find(b.begin(), b.end(), x) != b.end(); });
 }
 
 } // namespace
@@ -59,19 +86,23 @@ double overlap_area(std::vector<Eigen::Vector3d> a, const std::vector<Eigen::Vec
 std::vector<PieceGlue> MeshPieces::glued_across(Eigen::Index t, int a) const {
   const int e = entry[static_cast<std::size_t>(t)];
   if (e >= 0) return glues[static_cast<std::size_t>(e)][static_cast<std::size_t>(a)];
-  const int s = neighbours.across(t, a);
+  const int s = neighbours->across(t, a);
   if (s < 0) return {};
   const int f = entry[static_cast<std::size_t>(s)];
   if (f < 0) return {{0, 0}};
   // Seen from the other side: swap the pair.
-  std::vector<PieceGlue> theirs = glues[static_cast<std::size_t>(f)][static_cast<std::size_t>(neighbours.across_face(t, a))];
+  std::vector<PieceGlue> theirs = glues[static_cast<std::size_t>(f)][static_cast<std::size_t>(neighbours->across_face(t, a))];
   for (PieceGlue& g : theirs) std::swap(g.piece_a, g.piece_b);
   return theirs;
 }
 
 MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts) {
+  return cut_mesh_into_pieces(mesh, cuts, std::make_shared<const TetNeighbours>(tet_neighbours(mesh)));
+}
+
+MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours) {
   MeshPieces result;
-  result.neighbours = tet_neighbours(mesh);
+  result.neighbours = std::move(neighbours);
   const Eigen::Index T = mesh.num_tets();
   result.entry.assign(static_cast<std::size_t>(T), -1);
   result.tets_per_surface.assign(static_cast<std::size_t>(cuts.num_surfaces()), 0);
@@ -97,15 +128,23 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts) {
   // each was split by the planes that cross its own tet, so polygons that only share an edge
   // overlap in an area of the order of round-off times the face's).
   result.glues.resize(result.tets.size());
+  std::vector<FacePolygon> mine, theirs;
+  std::vector<Eigen::Vector3d> my_face, their_face, work, kept;
   for (std::size_t e = 0; e < result.tets.size(); ++e) {
     const Eigen::Index t = result.entry_tet[e];
     for (int a = 0; a < 4; ++a) {
-      const int s = result.neighbours.across(t, a);
+      const int s = result.neighbours->across(t, a);
       if (s < 0) continue;
-      const std::vector<FacePolygon> mine = face_polygons(mesh, result, t, a);
-      const std::vector<FacePolygon> theirs = face_polygons(mesh, result, s, result.neighbours.across_face(t, a));
+      face_polygons(mesh, result, t, a, my_face, mine);
+      face_polygons(mesh, result, s, result.neighbours->across_face(t, a), their_face, theirs);
       double face_area = 0.0;
-      for (const FacePolygon& p : mine) face_area += polygon_area_vector(p.polygon).norm();
+      for (const FacePolygon& p : mine) face_area += polygon_area_vector(*p.polygon).norm();
+      // Two polygons an edge line separates to within `slack` overlap at most in a strip of that
+      // width across the face, of area below 1e-11 of the face's: under the 1e-10 asked below.
+      double diameter = 0.0;
+      for (const FacePolygon& p : mine)
+        for (const Eigen::Vector3d& x : *p.polygon) diameter = std::max(diameter, (x - mine.front().polygon->front()).norm());
+      const double slack = 1e-11 * face_area / std::max(2.0 * diameter, std::numeric_limits<double>::min());
       std::vector<PieceGlue>& glued = result.glues[e][static_cast<std::size_t>(a)];
       for (const FacePolygon& p : mine) {
         if (p.covered) continue;
@@ -116,10 +155,18 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts) {
             return g.piece_a == pair.piece_a && g.piece_b == pair.piece_b;
           });
           if (known) continue;
-          // The neighbour walks the face the other way round: reverse its polygon so that both
-          // run counter-clockwise about the same normal.
-          std::vector<Eigen::Vector3d> q_same_way(q.polygon.rbegin(), q.polygon.rend());
-          if (overlap_area(p.polygon, q_same_way) > 1e-10 * face_area) glued.push_back(pair);
+          // Most faces are divided alike on both sides (the same planes crossed both tets, and a
+          // crossing on a shared edge is bitwise the same double from either side): the same
+          // corners, walked the other way round, overlap entirely; polygons on the two sides of
+          // a line across the face are told apart by that line. Otherwise clip; the neighbour
+          // walks the face the other way round, and overlap_area reads the inside of q's edges
+          // from q's own orientation, so no reversed copy is needed.
+          if (same_corners(*p.polygon, *q.polygon)) {
+            glued.push_back(pair);
+            continue;
+          }
+          if (edge_separates(*p.polygon, *q.polygon, slack) || edge_separates(*q.polygon, *p.polygon, slack)) continue;
+          if (overlap_area(*p.polygon, *q.polygon, work, kept) > 1e-10 * face_area) glued.push_back(pair);
         }
       }
     }

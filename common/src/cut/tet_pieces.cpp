@@ -21,23 +21,32 @@ Kernel::Point_3 to_cgal(const Eigen::Vector3d& x) { return {x[0], x[1], x[2]}; }
 // value of that sign; any other point gets its distance to the plane, snapped to 0 within the
 // tolerance. The value of a corner that the predicate puts strictly on one side is never 0,
 // however small its distance: the exact decision wins over round-off.
+//
+// The corners' values are decided once per triangle, when the side function is made: the
+// function is asked about the same four corners again and again as cells are split.
 struct TrianglePlaneSide {
-  const CutTriangle* triangle;
   const Corners* X;
   Eigen::Vector3d normal; // unit
   double offset;
   double tolerance;
+  std::array<double, 4> corner_value{}; // the value of corner k, its sign exact
+
+  TrianglePlaneSide(const CutTriangle& triangle, const Corners& corners, const Eigen::Vector3d& unit_normal, double tol)
+      : X(&corners), normal(unit_normal), offset(unit_normal.dot(triangle.corners[0])), tolerance(tol) {
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d x = corners.row(k).transpose();
+      const CGAL::Orientation o = CGAL::orientation(to_cgal(triangle.corners[0]), to_cgal(triangle.corners[1]),
+                                                    to_cgal(triangle.corners[2]), to_cgal(x));
+      const double distance = normal.dot(x) - offset;
+      corner_value[static_cast<std::size_t>(k)] =
+          o == CGAL::COPLANAR ? 0.0 : (o == CGAL::POSITIVE ? 1.0 : -1.0) * std::max(std::abs(distance), std::numeric_limits<double>::min());
+    }
+  }
 
   double operator()(const Eigen::Vector3d& x) const {
+    for (int k = 0; k < 4; ++k)
+      if (x == X->row(k).transpose()) return corner_value[static_cast<std::size_t>(k)];
     const double distance = normal.dot(x) - offset;
-    for (int k = 0; k < 4; ++k) {
-      if (x != X->row(k).transpose()) continue;
-      const CGAL::Orientation o = CGAL::orientation(to_cgal(triangle->corners[0]), to_cgal(triangle->corners[1]),
-                                                    to_cgal(triangle->corners[2]), to_cgal(x));
-      if (o == CGAL::COPLANAR) return 0.0;
-      const double sign = o == CGAL::POSITIVE ? 1.0 : -1.0;
-      return sign * std::max(std::abs(distance), std::numeric_limits<double>::min());
-    }
     return std::abs(distance) <= tolerance ? 0.0 : distance;
   }
 };
@@ -173,7 +182,7 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
       edge_sides[e] = {m, m.dot(p), tolerance};
       edge_planes[e] = {m, m.dot(p)};
     }
-    const TrianglePlaneSide side{&T, &X, n, n.dot(T.corners[0]), tolerance};
+    const TrianglePlaneSide side(T, X, n, tolerance);
     const Plane plane{n, n.dot(T.corners[0])};
     // Only cells whose box meets T's box can meet T: most cells of a tet that many small
     // triangles cross are far from any one of them.
@@ -184,14 +193,19 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
     std::vector<int> work;
     for (int c = 0; c < static_cast<int>(cells.size()); ++c)
       if (boxes[static_cast<std::size_t>(c)].intersects(triangle_box)) work.push_back(c);
-    std::vector<Eigen::Vector3d> section, above, below;
+    std::vector<Eigen::Vector3d> section;
     while (!work.empty()) {
       const int c = work.back();
       work.pop_back();
       // The section: the cell's points on T's plane (corners of value 0 and crossings).
       section.clear();
-      const bool straddles = cell_side(cells[c], side) == 0;
-      for (const CellFace& face : cells[c].faces) split_polygon(face.polygon, side, above, below, &section);
+      PlaneSides cell_sides;
+      for (const CellFace& face : cells[c].faces) {
+        const PlaneSides face_sides = polygon_section(face.polygon, side, section);
+        cell_sides.above = cell_sides.above || face_sides.above;
+        cell_sides.below = cell_sides.below || face_sides.below;
+      }
+      const bool straddles = cell_sides.above && cell_sides.below; // cell_side() == 0, from the same values
       if (section.size() < 3) continue; // the plane misses the cell, or touches an edge or a corner
       // Look at all three edges before splitting: a section beyond any one edge's line does not
       // meet T, whatever the other two say, and splitting it would only fragment the cell.

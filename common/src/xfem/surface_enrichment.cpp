@@ -52,7 +52,7 @@ SurfaceEnrichment make_surface_enrichment(const TetMesh& mesh, const MeshPieces&
   for (Eigen::Index i = 0; i < V; ++i) {
     result.first_enrichment[static_cast<std::size_t>(i) + 1] = result.first_enrichment[static_cast<std::size_t>(i)];
     if (!candidate[static_cast<std::size_t>(i)]) continue;
-    const std::vector<int>& support = pieces.neighbours.node_tets[static_cast<std::size_t>(i)];
+    const std::vector<int>& support = pieces.neighbours->node_tets[static_cast<std::size_t>(i)];
     // Local numbering of the support's pieces: tet support[s] has pieces offset[s] ...
     std::vector<int> offset(support.size() + 1, 0);
     for (std::size_t s = 0; s < support.size(); ++s) offset[s + 1] = offset[s] + pieces.num_pieces(support[s]);
@@ -60,7 +60,7 @@ SurfaceEnrichment make_surface_enrichment(const TetMesh& mesh, const MeshPieces&
     std::iota(parent.begin(), parent.end(), 0);
     for (std::size_t s = 0; s < support.size(); ++s)
       for (int a = 0; a < 4; ++a) {
-        const int other = pieces.neighbours.across(support[s], a);
+        const int other = pieces.neighbours->across(support[s], a);
         // Glue within the support only: a path round through tets outside it does not count.
         const auto where = std::lower_bound(support.begin(), support.end(), other);
         if (other < support[s] || where == support.end() || *where != other) continue;

@@ -106,12 +106,18 @@ void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Value& val
   above.clear();
   below.clear();
   const std::size_t n = polygon.size();
-  std::vector<double> s(n);
-  for (std::size_t k = 0; k < n; ++k) s[k] = value(polygon[k]);
+  if (n == 0) return;
+  // Each corner's value once, carried along the walk (no buffer: this runs for every face of
+  // every cell a cut triangle looks at, and an allocation per call was a third of its cost).
+  const double first = value(polygon[0]);
+  bool any_above = false, any_below = false;
+  double sp = first;
   for (std::size_t k = 0; k < n; ++k) {
     const Eigen::Vector3d& p = polygon[k];
     const Eigen::Vector3d& q = polygon[(k + 1) % n];
-    const double sp = s[k], sq = s[(k + 1) % n];
+    const double sq = k + 1 < n ? value(q) : first;
+    any_above = any_above || sp > 0.0;
+    any_below = any_below || sp < 0.0;
     if (sp >= 0.0) above.push_back(p);
     if (sp <= 0.0) below.push_back(p);
     if (sp == 0.0) record(p);
@@ -123,13 +129,44 @@ void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Value& val
       below.push_back(crossing);
       record(crossing);
     }
+    sp = sq;
   }
   // A part needs a corner strictly on its side: otherwise all its points lie on the plane,
   // in a line (the polygon only touches the plane), and it has no area.
-  const bool any_above = std::any_of(s.begin(), s.end(), [](double v) { return v > 0.0; });
-  const bool any_below = std::any_of(s.begin(), s.end(), [](double v) { return v < 0.0; });
   if (above.size() < 3 || !any_above) above.clear();
   if (below.size() < 3 || !any_below) below.clear();
+}
+
+/// The points where a plane meets a polygon, as split_polygon() finds them: the corners of
+/// value 0 and the crossings of its edges (the same doubles split_polygon() makes), appended to
+/// `on_plane` if not there yet. For looking at a section before deciding whether to split.
+/// @return whether some corner has a value > 0 (above) and some a value < 0 (below)
+struct PlaneSides {
+  bool above = false;
+  bool below = false;
+};
+template <PlaneSideFunction Value>
+PlaneSides polygon_section(const std::vector<Eigen::Vector3d>& polygon, const Value& value, std::vector<Eigen::Vector3d>& on_plane) {
+  const auto record = [&on_plane](const Eigen::Vector3d& x) {
+    if (std::find(on_plane.begin(), on_plane.end(), x) == on_plane.end()) on_plane.push_back(x);
+  };
+  PlaneSides sides;
+  const std::size_t n = polygon.size();
+  if (n == 0) return sides;
+  const double first = value(polygon[0]);
+  double sp = first;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3d& p = polygon[k];
+    const Eigen::Vector3d& q = polygon[(k + 1) % n];
+    const double sq = k + 1 < n ? value(q) : first;
+    sides.above = sides.above || sp > 0.0;
+    sides.below = sides.below || sp < 0.0;
+    if (sp == 0.0) record(p);
+    if (sp > 0.0 && sq < 0.0) record(Eigen::Vector3d(p + sp / (sp - sq) * (q - p)));
+    if (sp < 0.0 && sq > 0.0) record(Eigen::Vector3d(q + sq / (sq - sp) * (p - q)));
+    sp = sq;
+  }
+  return sides;
 }
 
 /// The area vector of a planar polygon (Newell): its length is the area, it points along the

@@ -8,6 +8,7 @@
 #include "kerf/mesh/tet_neighbours.hpp"
 
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace kerf {
@@ -25,7 +26,9 @@ struct PieceGlue {
 /// pieces on either side are joined where their polygons on the face overlap outside the cut:
 /// so a cut lying exactly in a mesh face separates the two tets, although neither is cut.
 struct MeshPieces {
-  TetNeighbours neighbours;             ///< the mesh's face and node adjacency
+  /// The mesh's face and node adjacency: a property of the mesh, not of the cut, so a caller that
+  /// cuts one mesh again and again (a growing cut) computes it once and shares it.
+  std::shared_ptr<const TetNeighbours> neighbours;
   std::vector<int> entry;               ///< #T: index into `tets`, -1 for a tet no cut triangle meets
   std::vector<int> entry_tet;           ///< the tet of each entry
   std::vector<TetPieces> tets;          ///< the pieces of each tet with an entry
@@ -55,5 +58,8 @@ struct MeshPieces {
 /// Cuts every tet of `mesh` (its four corners; Tet10 edges are straight) by `cuts`, and joins
 /// the pieces of neighbouring tets.
 MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts);
+
+/// The same with the mesh's adjacency given: tet_neighbours(mesh), made once for the mesh.
+MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours);
 
 } // namespace kerf
