@@ -18,6 +18,7 @@
 #include <vtkVariant.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -91,8 +92,10 @@ void colour_mapper(vtkPolyDataMapper& mapper, vtkLookupTable& table, vtkScalarBa
   bar.SetTitle(by_displacement ? "|u| (m)" : colour_by.c_str());
 }
 
-/// The colour bar: a narrow strip at the right edge, black text on the white background.
-void place_colour_bar(vtkScalarBarActor& bar) {
+/// The colour bar: a narrow strip at the right edge, black text on the white background. Its
+/// text gets sizes in proportion to the picture's height (VTK would fit each text to its box,
+/// which leaves a category's one-digit label tiny beside a long title).
+void place_colour_bar(vtkScalarBarActor& bar, int picture_height) {
   bar.SetOrientationToVertical();
   bar.GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   bar.GetPositionCoordinate()->SetValue(0.86, 0.1);
@@ -100,11 +103,15 @@ void place_colour_bar(vtkScalarBarActor& bar) {
   bar.SetHeight(0.8);
   bar.SetNumberOfLabels(5);
   bar.SetLabelFormat("%.3g");
+  bar.UnconstrainedFontSizeOn();
   for (vtkTextProperty* text : {bar.GetTitleTextProperty(), bar.GetLabelTextProperty(), bar.GetAnnotationTextProperty()}) {
     text->SetColor(0.0, 0.0, 0.0);
     text->ShadowOff();
     text->ItalicOff();
+    text->BoldOff();
+    text->SetFontSize(std::max(8, picture_height / 40));
   }
+  bar.GetTitleTextProperty()->SetFontSize(std::max(10, picture_height / 30));
 }
 
 } // namespace
@@ -120,7 +127,7 @@ vtkSmartPointer<vtkImageData> render_surface_image(vtkPolyData& surface, const P
   vtkNew<vtkLookupTable> table;
   vtkNew<vtkScalarBarActor> bar;
   colour_mapper(*mapper, *table, *bar, surface, settings.colour_by);
-  place_colour_bar(*bar);
+  place_colour_bar(*bar, settings.height);
 
   vtkNew<vtkActor> body;
   body->SetMapper(mapper);
