@@ -80,7 +80,7 @@ TEST_CASE("a clip plane draws the part of the body on the side its normal points
   CHECK(static_cast<double>(up.extent()) / across.extent() == doctest::Approx(2.0 / 0.3).epsilon(0.05));
 }
 
-TEST_CASE("the colours follow |u| (blue at rest, red where it is largest) or the piece, one colour each") {
+TEST_CASE("the colours follow |u| (blue at rest, red where it is largest) or the piece, one colour per value") {
   const vtkSmartPointer<vtkImageData> by_u = draw_two_pieces("colour_u", 0.3, 1.0);
   const render_test::ScanLine up = render_test::scan_column(*by_u, 150);
   const int lower = up.first + up.extent() / 4, upper = up.last - up.extent() / 4;
@@ -88,10 +88,17 @@ TEST_CASE("the colours follow |u| (blue at rest, red where it is largest) or the
   CHECK(at_rest.b > at_rest.r + 100);
   CHECK(moved.r > moved.b + 100);
 
+  // By piece: piece 0 blue, piece 1 orange (the value -1, absent here, would be grey).
   const vtkSmartPointer<vtkImageData> by_piece = draw_two_pieces("colour_piece", 0.3, 1.0, render_test::front_view("piece"));
   const render_test::Pixel piece_0 = render_test::pixel(*by_piece, 150, lower), piece_1 = render_test::pixel(*by_piece, 150, upper);
-  // Piece 0 gets the first colour, a grey (equal channels), piece 1 the second, a blue.
-  CHECK(std::abs(piece_0.r - piece_0.b) < 10);
-  CHECK(std::abs(piece_0.g - piece_0.b) < 10);
-  CHECK(piece_1.b > piece_1.r + 80);
+  CHECK(piece_0.b > piece_0.r + 80);
+  CHECK(piece_1.r > piece_1.b + 80);
+
+  // A value keeps its colour when the others are not in the picture: the upper piece alone
+  // (clipped above z = 1.5) is still orange, not the first colour of the table.
+  const kerf::ClipPlane above{{0, 0, 1.5}, {0, 0, 1}};
+  const vtkSmartPointer<vtkImageData> alone = draw_two_pieces("colour_piece_alone", 0.3, 1.0, render_test::front_view("piece"), above);
+  const render_test::ScanLine up_alone = render_test::scan_column(*alone, 150);
+  const render_test::Pixel only_1 = render_test::pixel(*alone, 150, (up_alone.first + up_alone.last) / 2);
+  CHECK(only_1.r > only_1.b + 80);
 }

@@ -28,30 +28,31 @@
 namespace kerf {
 namespace {
 
-/// The colours of the values of a cell array with few values, in increasing order of value:
-/// a light grey first (in the XFEM view, the value -1 of the tets drawn whole), then colours
-/// that stay apart for most colour-blind readers (Okabe and Ito's palette).
+/// The colours of the values -1, 0, 1, ..., 10 of a cell array such as the XFEM view's
+/// `piece`: a light grey for -1 (there, the tets drawn whole), then colours that stay apart for
+/// most colour-blind readers (Okabe and Ito's palette). A value keeps its colour whatever other
+/// values a picture shows, so that pictures of one body, clipped or not, agree.
+constexpr int first_category = -1;
 constexpr double category_colours[12][3] = {
     {0.80, 0.80, 0.80}, {0.00, 0.45, 0.70}, {0.90, 0.62, 0.00}, {0.00, 0.62, 0.45},
     {0.80, 0.40, 0.00}, {0.34, 0.71, 0.91}, {0.80, 0.60, 0.70}, {0.94, 0.89, 0.26},
     {0.40, 0.40, 0.40}, {0.55, 0.00, 0.55}, {0.60, 0.30, 0.10}, {0.10, 0.10, 0.40}};
 
-/// The distinct values of an array, or an empty set when it has more than 12 or a value that
-/// is not an integer: then it is drawn on a scale.
-std::set<double> few_integer_values(vtkDataArray& array) {
-  std::set<double> values;
+/// The distinct values of an array when all are whole numbers from -1 to 10, each of which
+/// then gets its own colour; otherwise an empty set, and the array is drawn on a scale.
+std::set<int> category_values(vtkDataArray& array) {
+  std::set<int> values;
   for (vtkIdType i = 0; i < array.GetNumberOfTuples(); ++i) {
     const double value = array.GetTuple1(i);
-    if (value != std::round(value)) return {};
-    values.insert(value);
-    if (values.size() > 12) return {};
+    if (value != std::round(value) || value < first_category || value >= first_category + 12) return {};
+    values.insert(static_cast<int>(value));
   }
   return values;
 }
 
 /// Colours the mapper by the array settings.colour_by names, and gives the colour bar its
-/// title and table. One colour per value for a cell array with few values (with the values as
-/// the bar's labels); otherwise VTK's blue-to-red scale over the array's range.
+/// title and table. One colour per value for a cell array of whole numbers from -1 to 10 (with
+/// the values as the bar's labels); otherwise VTK's blue-to-red scale over the array's range.
 void colour_mapper(vtkPolyDataMapper& mapper, vtkLookupTable& table, vtkScalarBarActor& bar, vtkPolyData& surface,
                    const std::string& colour_by) {
   const bool by_displacement = colour_by == "displacement";
@@ -69,15 +70,16 @@ void colour_mapper(vtkPolyDataMapper& mapper, vtkLookupTable& table, vtkScalarBa
   }
   double range[2];
   array->GetRange(range);
-  const std::set<double> values = by_displacement ? std::set<double>{} : few_integer_values(*array);
+  const std::set<int> values = by_displacement ? std::set<int>{} : category_values(*array);
   if (!values.empty()) {
+    // Indexed lookup: the k-th annotated value gets the k-th colour of the table.
     table.IndexedLookupOn();
     table.SetNumberOfTableValues(static_cast<vtkIdType>(values.size()));
-    vtkIdType index = 0;
-    for (const double value : values) {
-      const double* rgb = category_colours[index];
-      table.SetTableValue(index++, rgb[0], rgb[1], rgb[2]);
-      table.SetAnnotation(vtkVariant(value), std::to_string(static_cast<long long>(value)));
+    vtkIdType k = 0;
+    for (const int value : values) {
+      const double* rgb = category_colours[value - first_category];
+      table.SetTableValue(k++, rgb[0], rgb[1], rgb[2]);
+      table.SetAnnotation(vtkVariant(static_cast<double>(value)), std::to_string(value));
     }
   } else {
     // A body that does not move has |u| = 0 everywhere: a range of zero width would leave the

@@ -17,7 +17,9 @@ namespace kerf {
 struct PictureSettings {
   /// "displacement": |u| per point on a blue-to-red scale; or the name of a cell array of the
   /// surface (for the XFEM view: "piece", -1 for a tet drawn whole, 0, 1, ... for the pieces
-  /// of a cut tet), one colour per value when it has at most 12 values, a scale otherwise.
+  /// of a cut tet), one colour per value when its values are whole numbers from -1 to 10
+  /// (-1 light grey, 0 blue, 1 orange, ...: a value keeps its colour from picture to
+  /// picture), a scale otherwise.
   std::string colour_by = "displacement";
   CameraView camera;  ///< where the camera stands
   int width = 1200;   ///< pixels
