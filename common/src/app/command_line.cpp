@@ -30,17 +30,9 @@ CommandLine parse_command_line(int argc, const char* const* argv) {
   return options;
 }
 
-int run_guarded(int argc, const char* const* argv, const std::string& program, const std::string& usage,
-                const std::function<void(const CommandLine&)>& body, const CommandLineFeatures& taught) {
+int run_reporting_errors(const std::string& program, const std::function<void()>& body) {
   try {
-    const CommandLine options = parse_command_line(argc, argv);
-    if (options.moments_out && !taught.moments_out)
-      throw InputError("command line", "--moments-out", "the moments of cut pieces are taught from chapter 4 on (04_cut_quadrature)");
-    if (options.help) {
-      std::cout << usage;
-      return 0;
-    }
-    body(options);
+    body();
     return 0;
   } catch (const InputError& error) {
     std::cerr << program << ": error: " << error.what() << '\n';
@@ -49,6 +41,20 @@ int run_guarded(int argc, const char* const* argv, const std::string& program, c
     std::cerr << program << ": failed: " << error.what() << '\n';
     return 3;
   }
+}
+
+int run_guarded(int argc, const char* const* argv, const std::string& program, const std::string& usage,
+                const std::function<void(const CommandLine&)>& body, const CommandLineFeatures& taught) {
+  return run_reporting_errors(program, [&] {
+    const CommandLine options = parse_command_line(argc, argv);
+    if (options.moments_out && !taught.moments_out)
+      throw InputError("command line", "--moments-out", "the moments of cut pieces are taught from chapter 4 on (04_cut_quadrature)");
+    if (options.help) {
+      std::cout << usage;
+      return;
+    }
+    body(options);
+  });
 }
 
 } // namespace kerf

@@ -30,9 +30,16 @@ struct CommandLineFeatures {
 };
 
 /// Runs `body` and turns every exception into one line on stderr and a non-zero exit status:
-/// 2 for bad input (InputError), 3 for a numerical failure or anything else. `--help` prints
-/// `usage` and returns 0. Every chapter's main() is a single call to this, so the try/catch is
-/// written once, here. An option of a later chapter than `taught` allows is an InputError.
+/// `PROGRAM: error: MESSAGE` and 2 for bad input (InputError), `PROGRAM: failed: MESSAGE` and 3
+/// for a numerical failure or anything else; 0 when `body` returns. It is the one try/catch of
+/// every program in Kerf, the tools with command lines of their own included
+/// (examples/render_pieces.cpp).
+int run_reporting_errors(const std::string& program, const std::function<void()>& body);
+
+/// Parses the chapter command line and runs `body` on it through run_reporting_errors.
+/// `--help` prints `usage` and returns 0. Every chapter's main() is a single call to this, so
+/// the try/catch is written once. An option of a later chapter than `taught` allows is an
+/// InputError.
 int run_guarded(int argc, const char* const* argv, const std::string& program, const std::string& usage,
                 const std::function<void(const CommandLine&)>& body, const CommandLineFeatures& taught = {});
 
