@@ -3,6 +3,8 @@
 # (cut processing, the rules, the model) against unknowns. curved_ladder.csv.
 set terminal pngcairo size 1300,1000 enhanced font "DejaVu Sans,11" linewidth 1.5
 set datafile separator ","
+# A row another curve owns gives NaN: skipped without breaking the line, so each ladder is one curve.
+set datafile missing NaN
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
 set output "curved_rules.png"
 pick(cut, method, rule, c) = (strcol(1) eq cut && strcol(2) eq method && strcol(3) eq rule) ? column(c) : NaN
@@ -23,6 +25,7 @@ do for [cut in "dome ridge"] {
     set xlabel "free unknowns"
     set ylabel (ycol eq "8" ? "||u_h - u_{ref}|| / ||u_{ref}||" : "seconds")
     c = int(ycol)
+    if (ycol eq "7") { set key top left box opaque font ",9" } else { set key bottom left box opaque font ",9" }
     plot "curved_ladder.csv" using (pick(cut, "xfem10", "subtets", 5)):(pick(cut, "xfem10", "subtets", c)) w lp ls 1 t "Tet10 subtets", \
          "" using (pick(cut, "xfem10", "exact", 5)):(pick(cut, "xfem10", "exact", c)) w lp ls 2 t "Tet10 exact", \
          "" using (pick(cut, "xfem10", "moment_fitting", 5)):(pick(cut, "xfem10", "moment_fitting", c)) w lp ls 3 t "Tet10 Koschier moment fitting", \
