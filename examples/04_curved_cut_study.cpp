@@ -364,7 +364,7 @@ void run_cut(const std::string& cut, const Sizes& sizes, const std::string& ccx,
   const kerf::HeightField h = interpolated_height(analytic_height(cut), grid[0], grid[1]);
   const kerf::TriangleSurface surface = extended_cut_surface(h, grid);
 
-  // The reference, its check, and CalculiX on the check mesh.
+  // The reference, its check against the next coarser conforming Tet10, and CalculiX.
   auto start = clock::now();
   const kerf::HeightFieldSplitMesh reference = conforming_mesh(h, sizes.reference, 2);
   int reference_dofs = 0;
