@@ -146,6 +146,16 @@ Eigen::Index CutXfemModel::num_negative_weights() const {
   return count;
 }
 
+double CutXfemModel::integrated_volume(Eigen::Index t, int p) const {
+  double volume = 0.0;
+  for (const Point& point : integrated_pieces(t)[static_cast<std::size_t>(p)].points) volume += point.weight;
+  return volume;
+}
+
+EnrichmentVolumes CutXfemModel::enrichment_volumes() const {
+  return kerf::enrichment_volumes(mesh_, pieces_, enrichment_, [this](Eigen::Index t, int p) { return integrated_volume(t, p); });
+}
+
 Eigen::Index CutXfemModel::num_piece_points() const {
   Eigen::Index count = 0;
   for (const std::vector<Piece>& list : piece_data_)
@@ -329,11 +339,23 @@ PhantomMesh CutXfemModel::phantom_mesh() const {
 }
 
 std::vector<UnheldPiece> cut_xfem_unheld_pieces(const CutXfemModel& model, const DofMap& dofs) {
-  const PhantomMesh phantom = model.phantom_mesh();
+  PhantomMesh phantom = model.phantom_mesh();
+  const Eigen::Index N = model.mesh().num_nodes();
+  // A prescribed enrichment (a gripped node's, or a sliver's, eq. 22) makes the phantom value
+  // u_i + a_k move with u_i: the pieces that use it hang on node i, so they take node i itself.
+  const auto prescribed = [&](Eigen::Index dof_node) {
+    for (int p = 0; p < 3; ++p)
+      if (dofs.free_index[static_cast<std::size_t>(3 * dof_node + p)] >= 0) return false;
+    return true;
+  };
+  for (Eigen::Index t = 0; t < phantom.mesh.tets.rows(); ++t)
+    for (int a = 0; a < 4; ++a) {
+      const int v = phantom.mesh.tets(t, a);
+      if (v >= N && prescribed(v)) phantom.mesh.tets(t, a) = model.enrichment().enrichment_node[static_cast<std::size_t>(v - N)];
+    }
   // The value u_i + a_k of a phantom node is held when both are prescribed: it counts as free
   // when u_i is (only "free or not" matters to the check).
   DofMap phantom_dofs = dofs;
-  const Eigen::Index N = model.mesh().num_nodes();
   for (Eigen::Index k = 0; k < model.enrichment().num_enrichments(); ++k) {
     const int node = model.enrichment().enrichment_node[static_cast<std::size_t>(k)];
     for (int p = 0; p < 3; ++p)
@@ -363,10 +385,12 @@ Eigen::Vector3d CutXfemModel::displacement_at(const Eigen::VectorXd& u, Eigen::I
   return (tet10_shape(xi).transpose() * u_p).transpose();
 }
 
-DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions) {
+DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions, double sliver_fraction) {
   const SurfaceEnrichment& enrichment = model.enrichment();
   const auto num_nodes = static_cast<int>(model.mesh().num_nodes());
   DirichletNodes enrichments_of_gripped;
+  // Eq. 22: a sliver's enrichment is held at 0, like a gripped node's.
+  for (const int k : sliver_enrichments(model.enrichment_volumes(), sliver_fraction)) enrichments_of_gripped.nodes.push_back(num_nodes + k);
   for (const DirichletNodes& condition : conditions)
     for (const int v : condition.nodes) {
       if (v >= num_nodes) continue;

@@ -9,6 +9,7 @@
 #include "kerf/fem/linear_material.hpp"
 #include "kerf/quadrature/piece_quadrature_rule.hpp"
 #include "kerf/solve/linear_solver.hpp"
+#include "kerf/xfem/enrichment_volumes.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 
@@ -86,6 +87,11 @@ public:
   const SurfaceEnrichment& enrichment() const { return enrichment_; }
   /// Whether tet t is integrated piece by piece (an enrichment acts in it and it has pieces).
   bool split(Eigen::Index t) const { return !piece_data_[static_cast<std::size_t>(t)].empty(); }
+  /// The volume of piece p of tet t as its rule sees it, the sum of the weights (m^3); for a
+  /// tet integrated whole (p = 0), the tet's volume.
+  double integrated_volume(Eigen::Index t, int p) const;
+  /// V_enr and V_supp of every enrichment from the rules' weights (enrichment_volumes.hpp).
+  EnrichmentVolumes enrichment_volumes() const;
   /// The total number of quadrature points on the pieces of split tets.
   Eigen::Index num_piece_points() const;
   /// How many of them have a negative weight (moment-fitted rules have some). A negative weight
@@ -127,10 +133,13 @@ private:
   double position_force_norm_ = 0.0;
 };
 
-/// The DofMap of [u; a]: the Dirichlet conditions on the mesh's nodes, and a_i^k = 0 for every
+/// The DofMap of [u; a]: the Dirichlet conditions on the mesh's nodes, a_i^k = 0 for every
 /// enrichment of a gripped node (chapter 3's make_xfem_dof_map says why: the clamp holds the
-/// tissue on every side of the cut at the node).
-DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions);
+/// tissue on every side of the cut at the node), and a_i^k = 0 for every sliver enrichment,
+/// V_enr / V_supp < sliver_fraction (Koschier eq. 22, enrichment_volumes.hpp; 0 keeps every
+/// sliver that has any volume).
+DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions,
+                             double sliver_fraction = default_sliver_fraction);
 
 /// The pieces of the cut body that `dofs` leaves free to move rigidly: K^X_ff is singular
 /// exactly when this is not empty (a phantom node is held when its u and its a are prescribed).
