@@ -180,7 +180,7 @@ TEST_CASE("per-enrichment volumes: V_enr is chapter 3's plane clipping of the no
     const int i = body.enrichment.enrichment_node[static_cast<std::size_t>(k)];
     const bool node_above = body.mesh.nodes(i, 2) > z_c;
     double far = 0.0, support = 0.0;
-    for (const int t : body.pieces.neighbours.node_tets[static_cast<std::size_t>(i)]) {
+    for (const int t : body.pieces.neighbours->node_tets[static_cast<std::size_t>(i)]) {
       const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(body.mesh, t);
       const kerf::ClippedTet clipped = kerf::clip_tet(X, (X.col(2).array() - z_c).matrix());
       far += node_above ? clipped.V_b : clipped.V_a;

@@ -157,12 +157,13 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, st
           if (known) continue;
           // Most faces are divided alike on both sides (the same planes crossed both tets, and a
           // crossing on a shared edge is bitwise the same double from either side): the same
-          // corners, walked the other way round, overlap entirely; polygons on the two sides of
+          // corners, walked the other way round, overlap in the whole polygon; polygons on the two sides of
           // a line across the face are told apart by that line. Otherwise clip; the neighbour
           // walks the face the other way round, and overlap_area reads the inside of q's edges
           // from q's own orientation, so no reversed copy is needed.
           if (same_corners(*p.polygon, *q.polygon)) {
-            glued.push_back(pair);
+            // The overlap is the polygon itself; the same threshold as for a clipped overlap.
+            if (polygon_area_vector(*p.polygon).norm() > 1e-10 * face_area) glued.push_back(pair);
             continue;
           }
           if (edge_separates(*p.polygon, *q.polygon, slack) || edge_separates(*q.polygon, *p.polygon, slack)) continue;
