@@ -6,6 +6,7 @@
 #include "dynamics/cut_body.hpp"
 #include "kerf/dynamics/lumped_mass.hpp"
 #include "kerf/mesh/box_mesh.hpp"
+#include "kerf/mesh/tet10_from_tet4.hpp"
 
 #include <doctest/doctest.h>
 
@@ -211,4 +212,25 @@ TEST_CASE("on a cut block the piece-wise lumped masses weigh each part exactly a
     const Eigen::VectorXd expected = body.piecewise_field(side, [&](const Eigen::Vector3d&, int) { return g; });
     CHECK((acc - expected).lpNorm<Eigen::Infinity>() <= 1e-11 * g.norm());
   }
+}
+
+TEST_CASE("on a cut Tet10, HRZ stays positive and exact per piece; row sums go negative at the corners") {
+  const TetCut cut = tet_cuts()[2]; // two corners against two
+  const double V = 1.0 / 6.0;
+  const cut_body::CutBody body(kerf::tet10_from_tet4(cut_body::unit_tet()),
+                               {cut_body::plane_surface(cut.normal, cut.offset, {0.25, 0.25, 0.25}, 3.0)}, material);
+  REQUIRE(body.pieces.num_pieces(0) == 2);
+  const auto side = [&](const Eigen::Vector3d& x) { return cut.normal.dot(x) < cut.offset ? -1 : 1; };
+  const Eigen::Vector3d t(0.3, -0.2, 0.7);
+  const Eigen::SparseMatrix<double> hrz = kerf::lump_cut_xfem_mass(body.model, rho, kerf::LumpingScheme::hrz, cut_body::subtets);
+  // Positive definite: every pivot of its LDL^T is positive.
+  CHECK(Eigen::MatrixXd(hrz).ldlt().vectorD().minCoeff() > 0.0);
+  for (const int s : {-1, 1}) {
+    const Eigen::VectorXd alone = translation(body, side, s, t);
+    const double vs = s < 0 ? cut.volume_minus : V - cut.volume_minus;
+    CHECK(alone.dot(hrz * alone) / t.squaredNorm() == doctest::Approx(rho * vs).epsilon(1e-13));
+  }
+  // Row sums: corner 0's u entry is the sum of its two pieces' row sums, rho int_T N_0 = -rho V / 20.
+  const Eigen::SparseMatrix<double> row_sum = kerf::lump_cut_xfem_mass(body.model, rho, kerf::LumpingScheme::row_sum, cut_body::subtets);
+  CHECK(row_sum.coeff(0, 0) == doctest::Approx(-rho * V / 20.0).epsilon(1e-12));
 }
