@@ -62,9 +62,10 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
 /// node accelerates at g" (u'' = g, a'' = 0), exactly, however the body is cut.
 /// For schoch_eq_81_82 it is Paper 000's consistent body load (eq. 19, sum_p T_p^T int_p N^T rho g,
 /// CutXfemModel::gravity_load). With eqs. 81-82, on a single cut Tet4, it accelerates u at g but
-/// an enrichment k at 4 g <N_a>_p (<N_a>_p the mean of its node's shape function over the piece p
-/// where it is active), so a body in free fall opens at the cut (notes 6.2). Paulus's choice, no load on a,
-/// keeps free fall but drops the load of a piece's own mass; Kerf offers neither as a default.
+/// an enrichment k at 4 g mean_p(N_a) (the mean of its node's shape function N_a over the piece p
+/// where it is active), so a body in free fall opens at the cut (notes 6.2). Paulus's choice, no
+/// load on a, keeps free fall right, but a piece hanging from the rest then falls with the wrong
+/// acceleration (notes 6.2); Kerf does not offer it.
 Eigen::VectorXd lumped_gravity_load(const CutXfemModel& model, double density, const Eigen::Vector3d& g,
                                     LumpingScheme scheme, const PieceRuleFunction& rule);
 
