@@ -21,6 +21,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -230,7 +231,7 @@ TEST_CASE("the freed part of a clamped cut block falls as g t^2 / 2 with the vir
   const double dt = 0.02;
   const int steps = 20;
   for (const kerf::LumpingScheme scheme : {kerf::LumpingScheme::virtual_tet, kerf::LumpingScheme::schoch_eq_81_82}) {
-    CAPTURE(scheme == kerf::LumpingScheme::virtual_tet ? "virtual_tet" : "schoch_eq_81_82");
+    CAPTURE(std::string(scheme == kerf::LumpingScheme::virtual_tet ? "virtual_tet" : "schoch_eq_81_82"));
     kerf::LinearDynamicSystem system;
     system.M = kerf::lump_cut_xfem_mass(body.model, rho, scheme, cut_body::subtets);
     system.K = body.stiffness();

@@ -2,10 +2,12 @@
 // their closed-form discrete solutions: the period elongation omega_h dt = 2 atan(omega dt / 2)
 // and exact energy conservation of the one, the amplification 1 / (1 + omega^2 dt^2) of the
 // other's energy, and both with Rayleigh damping, whose dissipated work is the energy lost;
-// HHT-alpha: the average acceleration rule at alpha = 0, and its high-frequency spectral
+// the central difference's limit 2 / omega, unmoved by damping; HHT-alpha: the average
+// acceleration rule at alpha = 0, and its high-frequency spectral
 // radius (1 + alpha) / (1 - alpha) as a double root.
 #include "dynamics/oscillators.hpp"
 #include "kerf/dynamics/backward_euler.hpp"
+#include "kerf/dynamics/central_difference.hpp"
 #include "kerf/dynamics/energy_account.hpp"
 #include "kerf/dynamics/hht_alpha.hpp"
 #include "kerf/dynamics/newmark.hpp"
@@ -164,4 +166,24 @@ TEST_CASE("HHT-alpha is the average acceleration rule at alpha = 0 and damps the
     CHECK(std::abs(x[42] + 2.0 * x[41] + x[40]) > 0.01 * std::abs(x[40]));
     MESSAGE("HHT alpha = " << alpha << ": worst recurrence residual with lambda = " << lambda << ": " << worst);
   }
+}
+
+TEST_CASE("damping does not move the central difference's limit 2 / omega (gamma = 1/2, Hughes' Omega_crit = 2)") {
+  // Three equal oscillators of omega = 10 rad/s with damping ratio 1/2 (c = 2 xi omega m).
+  const double omega = 10.0, xi = 0.5;
+  const kerf::LinearDynamicSystem system = oscillators::make_system(Eigen::Vector3d::Ones(), Eigen::Vector3d::Constant(2.0 * xi * omega),
+                                                                    Eigen::Vector3d::Constant(omega * omega));
+  const kerf::ReducedDynamicSystem reduced(system);
+  const auto amplitude_after = [&](double factor, int steps) {
+    kerf::CentralDifferenceIntegrator central(system, factor * 2.0 / omega, true);
+    kerf::DynamicState state = kerf::consistent_initial_state(reduced, Eigen::Vector3d(1, 1, 1), Eigen::Vector3d::Zero(), 0.0, solver);
+    for (int n = 0; n < steps; ++n) central.step(state);
+    return std::abs(state.u[0]) + std::abs(state.v[0]) * factor * 2.0 / omega;
+  };
+  const kerf::CentralDifferenceIntegrator check(system, 0.999 * 2.0 / omega);
+  CHECK(check.critical_step() == doctest::Approx(2.0 / omega).epsilon(1e-12));
+  const double below = amplitude_after(0.99, 2000), above = amplitude_after(1.01, 2000);
+  CHECK(below < 1e-3); // damped away
+  CHECK(above > 1e3);  // grown, damping or not
+  MESSAGE("central difference, xi = 0.5: |u| + dt |v| after 2000 steps at 0.99 dt_crit " << below << ", at 1.01 dt_crit " << above);
 }

@@ -38,7 +38,8 @@ enum class LumpingScheme {
   hrz,
   /// The piece as its own "virtual tet": D_p,aa = rho V_p / n at every node (notes 6.2, the
   /// cure of eqs. 81-82, phantom-node lumping as in Song, Areias and Belytschko 2006). Exact mass;
-  /// the piece's lumped centre of mass is the element's centroid. Kerf's default.
+  /// the piece's lumped centre of mass is the element's centroid. The one Kerf recommends (notes
+  /// 6.7, item 4): it is positive for Tet4 and Tet10 alike.
   virtual_tet,
   /// Paper 000 eq. 81, M^uu_ii = m / n, and eq. 82, M^aa_kk = sum over the pieces p on which
   /// enrichment k is active of (V_p / V) (m / n), m the element mass; M^ua = 0. A piece
