@@ -1,0 +1,46 @@
+#include "kerf/dynamics/newmark.hpp"
+
+#include <stdexcept>
+
+namespace kerf {
+
+NewmarkIntegrator::NewmarkIntegrator(const LinearDynamicSystem& system, double dt, NewmarkParameters parameters,
+                                     const SolverSettings& solver_settings)
+    : reduced_(system), dt_(dt), parameters_(parameters), solver_(make_linear_solver(solver_settings)) {
+  if (!(dt > 0.0)) throw std::invalid_argument("NewmarkIntegrator: the time step must be positive");
+  const Eigen::SparseMatrix<double> A = reduced_.M_ff() + (parameters.gamma * dt) * reduced_.C_ff() +
+                                        (parameters.beta * dt * dt) * reduced_.K_ff();
+  solver_->analyze_pattern(A);
+  solver_->factorize(A);
+}
+
+StepEnergy NewmarkIntegrator::step(DynamicState& state) {
+  const double beta = parameters_.beta, gamma = parameters_.gamma, dt = dt_;
+  const ReducedDynamicSystem& R = reduced_;
+  const Eigen::VectorXd u = R.restrict_to_free(state.u), v = R.restrict_to_free(state.v), a = R.restrict_to_free(state.a);
+  const Eigen::VectorXd u_predicted = u + dt * v + (dt * dt * (0.5 - beta)) * a;
+  const Eigen::VectorXd v_predicted = v + (dt * (1.0 - gamma)) * a;
+  const Eigen::VectorXd rhs = R.free_load(state.t + dt) - R.C_ff() * v_predicted - R.K_ff() * u_predicted;
+  Eigen::VectorXd a_next = a;
+  solver_->solve(rhs, a_next);
+
+  DynamicState next;
+  next.t = state.t + dt;
+  next.u = R.expand(u_predicted + (beta * dt * dt) * a_next, true);
+  next.v = R.expand(v_predicted + (gamma * dt) * a_next, false);
+  next.a = R.expand(a_next, false);
+
+  // The energy of the step, on full vectors (the prescribed entries do not change).
+  const LinearDynamicSystem& S = R.system();
+  const Eigen::VectorXd du = next.u - state.u, v_bar = 0.5 * (next.v + state.v);
+  const Eigen::VectorXd a_jump = next.a - state.a, a_bar = 0.5 * (next.a + state.a);
+  StepEnergy energy;
+  energy.external_work = du.dot(0.5 * (S.load(state.t) + S.load(next.t)));
+  energy.damping = du.dot(S.C * v_bar);
+  const Eigen::VectorXd M_a_jump = S.M * a_jump;
+  energy.numerical = dt * dt * (beta - 0.5 * gamma) * M_a_jump.dot(a_bar) - dt * (gamma - 0.5) * v_bar.dot(M_a_jump);
+  state = std::move(next);
+  return energy;
+}
+
+} // namespace kerf

@@ -1,0 +1,107 @@
+// What the dynamics tests share: a body cut by one plane (one tet or a box mesh), its full
+// [u; a] stiffness and consistent mass, and the DOFs of a field given side by side.
+#pragma once
+
+#include "kerf/cut/cut_surfaces.hpp"
+#include "kerf/cut/mesh_pieces.hpp"
+#include "kerf/fem/dof_map.hpp"
+#include "kerf/fem/sparse_assembler.hpp"
+#include "kerf/quadrature/gauss_piece_rules.hpp"
+#include "kerf/xfem/cut_xfem_model.hpp"
+#include "kerf/xfem/surface_enrichment.hpp"
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <utility>
+#include <vector>
+
+namespace cut_body {
+
+// Sub-tetrahedra with Gauss rules of the degree asked for: exact for every polynomial integrand.
+inline kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece,
+                                         int degree) {
+  return kerf::subtet_rule(pieces, piece, degree);
+}
+
+// The plane n . x = offset as a square of two triangles, 2 half_size wide, centred on the
+// plane's point nearest `centre`.
+inline kerf::TriangleSurface plane_surface(const Eigen::Vector3d& normal, double offset, const Eigen::Vector3d& centre,
+                                           double half_size) {
+  const Eigen::Vector3d n = normal.normalized();
+  const Eigen::Vector3d c = centre + (offset / normal.norm() - n.dot(centre)) * n;
+  const Eigen::Vector3d e1 = n.unitOrthogonal() * half_size, e2 = n.cross(e1.normalized()) * half_size;
+  kerf::TriangleSurface s;
+  s.vertices.resize(4, 3);
+  s.vertices.row(0) = (c - e1 - e2).transpose();
+  s.vertices.row(1) = (c + e1 - e2).transpose();
+  s.vertices.row(2) = (c + e1 + e2).transpose();
+  s.vertices.row(3) = (c - e1 + e2).transpose();
+  s.triangles.resize(2, 3);
+  s.triangles << 0, 1, 2, 0, 2, 3;
+  return s;
+}
+
+// Everything a cut XFEM body keeps alive; `side(x)` says on which side of the plane x lies (+1 / -1).
+struct CutBody {
+  kerf::TetMesh mesh;
+  kerf::CutSurfaces cuts;
+  kerf::MeshPieces pieces;
+  kerf::SurfaceEnrichment enrichment;
+  kerf::CutXfemModel model;
+  CutBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::LinearMaterial& material)
+      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
+        enrichment(kerf::make_surface_enrichment(mesh, pieces)), model(mesh, material, pieces, enrichment, subtets) {}
+
+  // A point inside piece p of tet t: its centroid (by a degree-1 rule), or the tet's.
+  Eigen::Vector3d piece_centroid(Eigen::Index t, int p) const {
+    if (!model.split(t)) return kerf::tet_corners(mesh, t).colwise().mean().transpose();
+    const kerf::TetPieces& tp = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
+    const kerf::PieceQuadratureRule r = kerf::subtet_rule(tp, p, 1);
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    double w = 0.0;
+    for (std::size_t q = 0; q < r.points.size(); ++q) x += r.weights[q] * r.points[q], w += r.weights[q];
+    return x / w;
+  }
+  int num_integrated_pieces(Eigen::Index t) const { return model.split(t) ? pieces.num_pieces(t) : 1; }
+
+  // The DOFs [u; a] of the field that is f(x, s) on side s of the cut (s = side of the piece's
+  // centroid): u_i the value on node i's home piece, a_k the value where k is active minus u_i.
+  Eigen::VectorXd piecewise_field(const std::function<int(const Eigen::Vector3d&)>& side,
+                                  const std::function<Eigen::Vector3d(const Eigen::Vector3d&, int)>& f) const {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
+    for (int pass = 0; pass < 2; ++pass)
+      for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
+        for (int p = 0; p < num_integrated_pieces(t); ++p) {
+          const int s = side(piece_centroid(t, p));
+          for (int a = 0; a < mesh.nodes_per_tet(); ++a) {
+            const int i = mesh.tets(t, a);
+            const int k = model.phantom_node(t, p, a);
+            const Eigen::Vector3d x = mesh.nodes.row(i).transpose();
+            if (pass == 0 && k == i) u.segment<3>(3 * i) = f(x, s);
+            if (pass == 1 && k != i) u.segment<3>(3 * k) = f(x, s) - u.segment<3>(3 * i);
+          }
+        }
+    return u;
+  }
+
+  // The full linear stiffness K^X on all 3 num_dof_nodes() DOFs.
+  Eigen::SparseMatrix<double> stiffness() const {
+    const kerf::DofMap all_free = kerf::make_dof_map(model.num_dof_nodes(), {});
+    kerf::SparseAssembler assembler(model.assembly_slots(), all_free);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(all_free.num_free);
+    model.assemble_linear_stiffness(assembler, rhs);
+    return assembler.matrix();
+  }
+};
+
+// The unit tet (0,0,0), (1,0,0), (0,1,0), (0,0,1).
+inline kerf::TetMesh unit_tet() {
+  kerf::TetMesh mesh;
+  mesh.nodes.resize(4, 3);
+  mesh.nodes << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  mesh.tets.resize(1, 4);
+  mesh.tets << 0, 1, 2, 3;
+  return mesh;
+}
+
+} // namespace cut_body
