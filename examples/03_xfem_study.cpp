@@ -64,6 +64,7 @@
 #include "kerf/xfem/xfem_loads.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 #include "measure.hpp" // bench/measure.hpp: the command line shared with the benchmarks
+#include "reference_field.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -254,43 +255,11 @@ void solve_xfem(XfemRun& run, const kerf::RectangleCut& cut, const LoadCase& c, 
 
 // @sect3{The error measure}
 
-/// The degree-2 points of every tet of the reference mesh (4 per tet, all interior, so none on
-/// the cut plane, where the reference has a node layer) with their weights w |J|, and the
-/// reference displacement there, evaluated in its own tet: on its own side of the cut.
-struct ReferenceField {
-  Eigen::MatrixXd points;  ///< #P by 3
-  Eigen::VectorXd weights; ///< #P
-  Eigen::MatrixXd values;  ///< #P by 3
-  double norm = 0.0;       ///< ||u_ref||_L2
-};
-
-ReferenceField sample_reference(const kerf::TetMesh& mesh, const Eigen::VectorXd& u) {
-  const kerf::TetQuadratureRule rule = kerf::tet_quadrature_rule(2);
-  const Eigen::Index q = static_cast<Eigen::Index>(rule.points.size());
-  ReferenceField r;
-  r.points.resize(mesh.num_tets() * q, 3);
-  r.weights.resize(mesh.num_tets() * q);
-  r.values.resize(mesh.num_tets() * q, 3);
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    const Eigen::Vector3d X0 = mesh.nodes.row(mesh.tets(t, 0)).transpose();
-    Eigen::Matrix3d J;
-    for (int a = 0; a < 3; ++a) J.col(a) = mesh.nodes.row(mesh.tets(t, a + 1)).transpose() - X0;
-    const double det = std::abs(J.determinant());
-    for (Eigen::Index k = 0; k < q; ++k) {
-      const Eigen::Index p = t * q + k;
-      r.points.row(p) = (X0 + J * rule.points[static_cast<std::size_t>(k)]).transpose();
-      r.weights[p] = rule.weights[static_cast<std::size_t>(k)] * det;
-      r.values.row(p) = kerf::evaluate_displacement(mesh, u, t, rule.points[static_cast<std::size_t>(k)]).transpose();
-    }
-  }
-  r.norm = std::sqrt((r.weights.array() * r.values.rowwise().squaredNorm().array()).sum());
-  return r;
-}
-
-/// ||u_h - u_ref||_L2 / ||u_ref||_L2 from u_h at the reference's points.
-double relative_l2(const ReferenceField& ref, const Eigen::MatrixXd& values) {
-  return std::sqrt((ref.weights.array() * (values - ref.values).rowwise().squaredNorm().array()).sum()) / ref.norm;
-}
+// The reference at its own degree-2 points (examples/reference_field.hpp), shared with chapter
+// 4's curved-cut study.
+using study::ReferenceField;
+using study::relative_l2;
+using study::sample_reference;
 
 /// A conforming solution at the reference's points. A point of the reference lies strictly on
 /// one side of the plane z = 0.1, and so in a tet of the coarse split mesh on the same side.

@@ -77,6 +77,7 @@
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 #include "measure.hpp" // bench/measure.hpp: the command line and the clock shared with the benchmarks
+#include "reference_field.hpp"
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -195,41 +196,13 @@ Eigen::VectorXd solve_conforming(const kerf::TetMesh& mesh, int& dofs_out) {
 
 // @sect3{The error measure}
 
-/// The reference's degree-2 points with their weights and the reference displacement there.
-struct ReferenceField {
-  Eigen::MatrixXd points;  ///< #P by 3
-  Eigen::VectorXd weights; ///< #P
-  Eigen::MatrixXd values;  ///< #P by 3
-  double norm = 0.0;       ///< ||u_ref||_L2
-};
+using study::ReferenceField;   // the reference at its own degree-2 points (reference_field.hpp)
+using study::sample_reference;
 
-ReferenceField sample_reference(const kerf::TetMesh& mesh, const Eigen::VectorXd& u) {
-  const kerf::TetQuadratureRule rule = kerf::tet_quadrature_rule(2);
-  const Eigen::Index q = static_cast<Eigen::Index>(rule.points.size());
-  ReferenceField r;
-  r.points.resize(mesh.num_tets() * q, 3);
-  r.weights.resize(mesh.num_tets() * q);
-  r.values.resize(mesh.num_tets() * q, 3);
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    const Eigen::Vector3d X0 = mesh.nodes.row(mesh.tets(t, 0)).transpose();
-    Eigen::Matrix3d J;
-    for (int a = 0; a < 3; ++a) J.col(a) = mesh.nodes.row(mesh.tets(t, a + 1)).transpose() - X0;
-    const double det = std::abs(J.determinant());
-    for (Eigen::Index k = 0; k < q; ++k) {
-      const Eigen::Index p = t * q + k;
-      const Eigen::Vector3d& xi = rule.points[static_cast<std::size_t>(k)];
-      r.points.row(p) = (X0 + J * xi).transpose();
-      r.weights[p] = rule.weights[static_cast<std::size_t>(k)] * det;
-      r.values.row(p) = kerf::evaluate_displacement(mesh, u, t, xi).transpose();
-    }
-  }
-  r.norm = std::sqrt((r.weights.array() * r.values.rowwise().squaredNorm().array()).sum());
-  return r;
-}
-
+/// The relative L2 error of values at the reference's points, refusing points outside a mesh.
 double relative_l2(const ReferenceField& ref, const Eigen::MatrixXd& values, Eigen::Index outside) {
   if (outside > 0) throw std::runtime_error(std::to_string(outside) + " reference points outside a mesh");
-  return std::sqrt((ref.weights.array() * (values - ref.values).rowwise().squaredNorm().array()).sum()) / ref.norm;
+  return study::relative_l2(ref, values);
 }
 
 /// A conforming solution at the reference's points: in the tet that holds each. Where this

@@ -17,6 +17,8 @@
 #include "kerf/xfem/enrichment_volumes.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 
+#include "support/cut_body.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -31,10 +33,6 @@ namespace {
 const kerf::LinearMaterial material{300e3, 0.35, 1070.0};
 const Eigen::Vector3d beam_max(0.03, 0.06, 0.2);
 const Eigen::Vector3d gravity(9.81, 0.0, 0.0);
-
-kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece, int degree) {
-  return kerf::subtet_rule(pieces, piece, degree);
-}
 
 kerf::TetMesh beam(const Eigen::Vector3i& cells, int order) {
   const kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, beam_max, cells);
@@ -63,17 +61,7 @@ std::vector<kerf::DirichletNodes> both_ends(const kerf::TetMesh& mesh, const Eig
           {nodes_where(mesh, [](const Eigen::Vector3d& x) { return x.z() > 0.2 - 1e-12; }), top}};
 }
 
-// Everything a cut XFEM solve keeps alive.
-struct CutBody {
-  kerf::TetMesh mesh;
-  kerf::CutSurfaces cuts;
-  kerf::MeshPieces pieces;
-  kerf::SurfaceEnrichment enrichment;
-  kerf::CutXfemModel model;
-  CutBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces)
-      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
-        enrichment(kerf::make_surface_enrichment(mesh, pieces)), model(mesh, material, pieces, enrichment, subtets) {}
-};
+using support::CutBody;
 
 // The largest nodal difference between XFEM on the unopened mesh and FEM on the opened one: node
 // a of tet t has the phantom value u_a (+ a_k where an enrichment acts) in XFEM (every tet is one
@@ -94,7 +82,7 @@ TEST_CASE("a half-depth rectangle lying in mesh faces is the mesh opened along t
     CAPTURE(order);
     // x = 0.015 and z = 0.1 are node layers of 2 x 3 x 8 cells; the surface runs past the faces
     // x = 0 and y = 0, 0.06, so inside the body it is the rectangle [0, 0.015] x [0, 0.06].
-    CutBody body(beam({2, 3, 8}, order), {horizontal_rectangle(-0.01, 0.015, -0.01, 0.07, 0.1)});
+    CutBody body(beam({2, 3, 8}, order), {horizontal_rectangle(-0.01, 0.015, -0.01, 0.07, 0.1)}, material);
     REQUIRE(body.pieces.count(kerf::SurfaceCutState::touched) > 0);
     REQUIRE(body.pieces.count(kerf::SurfaceCutState::completely_cut) == 0);
     const Eigen::VectorXd u = kerf::solve_linear_cut_xfem(body.model, kerf::make_cut_xfem_dof_map(body.model, clamped_bottom(body.mesh)),
@@ -130,7 +118,7 @@ TEST_CASE("a curved cut lying in the faces of the mesh meshed to follow it is th
     for (Eigen::Index t = 0; t < mapped.tets.rows(); ++t)
       for (Eigen::Index a = 0; a < mapped.tets.cols(); ++a)
         if (mapped.tets(t, a) >= originals) mapped.tets(t, a) = split.split.duplicate_of[static_cast<std::size_t>(mapped.tets(t, a) - originals)];
-    CutBody body(mapped, {split.cut_surface});
+    CutBody body(mapped, {split.cut_surface}, material);
     REQUIRE(body.pieces.count(kerf::SurfaceCutState::completely_cut) == 0);
     CHECK(body.enrichment.num_enrichments() == split.split.duplicated_nodes);
     const Eigen::Vector3d top(0.001, 0.0, 0.002);
@@ -173,7 +161,7 @@ TEST_CASE("per-enrichment volumes: V_enr is chapter 3's plane clipping of the no
   // The half-depth cut 0.3 h above the layer z = 0.1 of 2 x 2 x 4 cells (h = 0.05): the nodes of
   // x = 0 on the layers z = 0.1 and 0.15 are enriched, their supports crossed by the plane only.
   const double z_c = 0.1 + 0.3 * 0.05;
-  CutBody body(beam({2, 2, 4}, 1), {half_depth(z_c)});
+  CutBody body(beam({2, 2, 4}, 1), {half_depth(z_c)}, material);
   REQUIRE(body.enrichment.num_enrichments() > 0);
   const kerf::EnrichmentVolumes volumes = body.model.enrichment_volumes();
   for (Eigen::Index k = 0; k < body.enrichment.num_enrichments(); ++k) {
@@ -203,7 +191,7 @@ TEST_CASE("slivers: kept, they come loose and are refused; eq. 22 constrains the
     // faces they share are about 1e-12 of a face: below the gluing threshold of mesh_pieces.hpp
     // (1e-10 of the face), so they are pieces of their own, connected to nothing.
     const double d = 1e-6 * 0.05;
-    CutBody body(beam({2, 2, 4}, order), {half_depth(0.1 + d)});
+    CutBody body(beam({2, 2, 4}, order), {half_depth(0.1 + d)}, material);
     const kerf::SolverSettings solver;
     const Eigen::VectorXd no_load = Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes());
     // Every sliver kept: the library finds pieces no condition holds and refuses, by name.
@@ -218,7 +206,7 @@ TEST_CASE("slivers: kept, they come loose and are refused; eq. 22 constrains the
     const Eigen::VectorXd u = kerf::solve_linear_cut_xfem(body.model, dofs, no_load, solver);
     REQUIRE(u.allFinite());
     // The cut exactly on the layer: no tet is split, no rule and no guard enters.
-    CutBody layer(beam({2, 2, 4}, order), {half_depth(0.1)});
+    CutBody layer(beam({2, 2, 4}, order), {half_depth(0.1)}, material);
     const Eigen::VectorXd u_layer = kerf::solve_linear_cut_xfem(layer.model, kerf::make_cut_xfem_dof_map(layer.model, pull(layer.mesh), 0.0),
                                                                 Eigen::VectorXd::Zero(3 * layer.model.num_dof_nodes()), solver);
     // Moving the cut by d changes the solution by O(d / h) = 1e-6, and constraining a sliver
@@ -235,7 +223,7 @@ TEST_CASE("a cut a hair short of the side face: a gap above the snap leaves the 
     for (const double delta : {1e-3, 1e-9, 1e-12, 0.0, -1e-12, -1e-3}) {
       CAPTURE(order);
       CAPTURE(delta);
-      CutBody body(beam({3, 2, 4}, order), {horizontal_rectangle(-0.01, 0.03 * (1.0 - delta), -0.01, 0.07, z)});
+      CutBody body(beam({3, 2, 4}, order), {horizontal_rectangle(-0.01, 0.03 * (1.0 - delta), -0.01, 0.07, z)}, material);
       // No crash, and pieces that fill their tets.
       for (const kerf::TetPieces& tp : body.pieces.tets) {
         double sum = 0.0;

@@ -3,6 +3,7 @@
 // pieces moved rigidly, each its own way, feel no force (linear and corotated, Tet4 and Tet10);
 // and for a plane cut clean through a Tet4 mesh it is chapter 3's solution.
 #include "chapter_04/ridge_cut.hpp"
+#include "support/cut_body.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/fem/assemble_loads.hpp"
@@ -35,22 +36,8 @@ const kerf::LinearMaterial material{1000.0, 0.3, 1.0};
 using ridge_cut::point_in_piece;
 using ridge_cut::side_of;
 
-// Sub-tetrahedra with Gauss rules of the degree asked for: exact for every polynomial integrand.
-kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece, int degree) {
-  return kerf::subtet_rule(pieces, piece, degree);
-}
-
-// Everything a cut XFEM solve keeps alive.
-struct CutBody {
-  kerf::TetMesh mesh;
-  kerf::CutSurfaces cuts;
-  kerf::MeshPieces pieces;
-  kerf::SurfaceEnrichment enrichment;
-  kerf::CutXfemModel model;
-  CutBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::PieceRuleFunction& rule = subtets)
-      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
-        enrichment(kerf::make_surface_enrichment(mesh, pieces)), model(mesh, material, pieces, enrichment, rule) {}
-};
+using support::CutBody;
+using support::subtets;
 
 // The DOFs [u; a] of the field that is f_plus(x) above the cut and f_minus(x) below, at nodes:
 // u_i is the home side's value, a_k the other side's minus it.
@@ -99,7 +86,7 @@ std::vector<int> nodes_where(const kerf::TetMesh& mesh, const std::function<bool
 } // namespace
 
 TEST_CASE("Tet10 XFEM with no cut is chapter 1's Tet10 solve") {
-  CutBody body(kerf::tet10_from_tet4(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 3})), {});
+  CutBody body(kerf::tet10_from_tet4(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 3})), {}, material);
   const std::vector<kerf::DirichletNodes> clamp{{nodes_where(body.mesh, [](const Eigen::Vector3d& x) { return x.z() == 0.0; }), {0, 0, 0}}};
   const Eigen::Vector3d g(9.81, 0.0, -2.0);
   const kerf::SolverSettings solver;
@@ -125,7 +112,7 @@ TEST_CASE("a Tet10 mesh cut by a kinked surface reproduces a quadratic field exa
   const kerf::PieceRuleFunction rule = [degree](const Eigen::Matrix<double, 4, 3>& X, const kerf::TetPieces& p, int piece, int) {
     return degree == 0 ? kerf::volume_ratio_rule(X, p, piece, 2) : subtets(X, p, piece, degree);
   };
-  CutBody body(kerf::tet10_from_tet4(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 3})), surfaces, rule);
+  CutBody body(kerf::tet10_from_tet4(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 3})), surfaces, material, rule);
   REQUIRE((body.pieces.count(kerf::SurfaceCutState::completely_cut) > 0) == cut);
   REQUIRE((body.enrichment.num_enrichments() > 0) == cut);
   // The cut is free, so the field must leave it free of traction: the uniaxial stress
@@ -167,7 +154,7 @@ TEST_CASE("pieces moved rigidly, each its own way, feel no force") {
     CAPTURE(order);
     kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 4});
     if (order == 2) mesh = kerf::tet10_from_tet4(mesh);
-    CutBody body(std::move(mesh), {ridge_cut::surface()});
+    CutBody body(std::move(mesh), {ridge_cut::surface()}, material);
     // Above: turned by 60 degrees about x and lifted; below: turned by -35 degrees about z.
     const Eigen::Matrix3d R_plus = Eigen::AngleAxisd(M_PI / 3.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
     const Eigen::Matrix3d R_minus = Eigen::AngleAxisd(-0.61, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -213,7 +200,7 @@ TEST_CASE("for a plane cut clean through a Tet4 mesh, it is chapter 3's solution
   const Eigen::VectorXd u3 = kerf::solve_linear_xfem(model3, kerf::make_xfem_dof_map(model3, clamps), f3, solver);
 
   // Chapter 4: the rectangle as two triangles, pieces integrated by sub-tetrahedra.
-  CutBody body(mesh, {kerf::rectangle_surface(plane)});
+  CutBody body(mesh, {kerf::rectangle_surface(plane)}, material);
   CHECK(body.enrichment.num_enrichments() == enrichment3.num_enriched());
   const Eigen::VectorXd u4 = kerf::solve_linear_cut_xfem(body.model, kerf::make_cut_xfem_dof_map(body.model, clamps),
                                                          body.model.gravity_load(material.density, g), solver);

@@ -2,6 +2,7 @@
 // for random planes, a plane given as two triangles, a cut that ends inside the tet, cuts
 // exactly through a corner, along an edge and along a face, a fold that makes three pieces, a
 // right-angled kink, and the closed boundary of every piece (the divergence theorem).
+#include "common/random_fan.hpp"
 #include "kerf/cut/clip_tet.hpp"
 #include "kerf/cut/convex_cell.hpp"
 #include "kerf/cut/tet_pieces.hpp"
@@ -12,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -250,39 +252,15 @@ TEST_CASE("convex cells: the unit tet's cell and its fan of tetrahedra") {
 }
 
 TEST_CASE("random surfaces on a coarse grid, full of exact coincidences, always give closed pieces that fill the tet") {
-  // Tet corners and surface vertices on the grid of spacing 1/4: cuts through corners, along
-  // edges and in faces happen all the time. Each surface is a fan of 2-5 triangles around a
-  // centre, its rim far outside the tet (a wavy disc with a slit where the fan does not close:
-  // a manifold, consistently oriented, that cuts some tets completely and some partially).
-  // Whatever happens, the
-  // pieces must close, have positive volume, and add up to the tet.
+  // The random fans of random_fan.hpp: cuts through corners, along edges and in faces are
+  // common, and some tets are cut completely, some partially. Whatever happens, the pieces must
+  // close, have positive volume, and add up to the tet.
   std::mt19937 random(2024);
-  std::uniform_int_distribution<int> grid(-4, 8);
-  const auto on_grid = [&]() {
-    Eigen::Vector3d x;
-    for (int c = 0; c < 3; ++c) x[c] = 0.25 * grid(random);
-    return x;
-  };
   int cases = 0, split = 0;
   for (int trial = 0; trial < 3000; ++trial) {
-    Corners X;
-    for (int i = 0; i < 4; ++i) X.row(i) = (on_grid() * 0.5).transpose();
-    if (std::abs(kerf::signed_tet_volume(X)) < 1e-3) continue;
-    const Eigen::Vector3d centre = on_grid() * 0.5;
-    std::uniform_int_distribution<int> spokes(3, 6);
-    const int n = spokes(random);
-    std::vector<Eigen::Vector3d> rim;
-    for (int k = 0; k < n; ++k) {
-      const double angle = 2.0 * M_PI * k / n;
-      rim.emplace_back(centre + 3.0 * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0) + on_grid() * 0.25);
-    }
-    std::vector<CutTriangle> surface;
-    for (int k = 0; k + 1 < n; ++k) {
-      const Eigen::Vector3d& a = rim[static_cast<std::size_t>(k)];
-      const Eigen::Vector3d& b = rim[static_cast<std::size_t>(k + 1)];
-      if ((a - centre).cross(b - centre).norm() < 1e-9) continue;
-      surface.push_back(triangle(centre, a, b, k));
-    }
+    const std::optional<random_fan::Case> fan = random_fan::next(random);
+    if (!fan) continue;
+    const auto& [X, centre, rim, surface] = *fan;
     const kerf::TetPieces pieces = kerf::split_tet_by_triangles(X, surface);
     ++cases;
     split += pieces.num_pieces() > 1 ? 1 : 0;

@@ -12,6 +12,7 @@
 //       gluing joined material the cut separates).
 // (2) is asked for large components only: the lattice may miss a thin neck of one piece and so
 // split it in two, a failure of the lattice, not of the pieces.
+#include "common/random_fan.hpp"
 #include "kerf/cut/tet_pieces.hpp"
 
 #include <doctest/doctest.h>
@@ -21,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <vector>
@@ -169,41 +171,18 @@ TEST_CASE("the pieces of a folded cut are the components of a flood fill that no
 }
 
 TEST_CASE("random surfaces on a coarse grid: every flood-fill component is one piece, and no two large ones share a piece") {
-  // The random fans of test_tet_pieces.cpp (vertices on a grid of spacing 1/8, a wavy disc with
-  // a slit), which cut through corners, along edges and in faces all the time. (2) is asked only
+  // The random fans of test_tet_pieces.cpp (random_fan.hpp), which cut through corners, along
+  // edges and in faces all the time. (2) is asked only
   // where the surface's boundary (the rim and the slit) misses the tet: where it crosses, the
   // material joins round it, often through a region near a corner far smaller than the
   // lattice's spacing, which the flood fill cannot see (it then reports two components that the
   // pieces rightly keep as one: seen at 4 of these 400 trials).
   std::mt19937 random(99);
-  std::uniform_int_distribution<int> grid(-4, 8);
-  const auto on_grid = [&]() {
-    Eigen::Vector3d x;
-    for (int c = 0; c < 3; ++c) x[c] = 0.25 * grid(random);
-    return x;
-  };
   int cases = 0, separating = 0, several_pieces = 0, several_large = 0;
   for (int trial = 0; trial < 400; ++trial) {
-    Corners X;
-    for (int i = 0; i < 4; ++i) X.row(i) = (on_grid() * 0.5).transpose();
-    const double volume = (X.row(1) - X.row(0)).cross(X.row(2) - X.row(0)).dot(X.row(3) - X.row(0)) / 6.0;
-    if (std::abs(volume) < 1e-3) continue;
-    if (volume < 0) X.row(1).swap(X.row(2));
-    const Eigen::Vector3d centre = on_grid() * 0.5;
-    std::uniform_int_distribution<int> spokes(3, 6);
-    const int n = spokes(random);
-    std::vector<Eigen::Vector3d> rim;
-    for (int k = 0; k < n; ++k) {
-      const double angle = 2.0 * M_PI * k / n;
-      rim.emplace_back(centre + 3.0 * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0) + on_grid() * 0.25);
-    }
-    std::vector<CutTriangle> surface;
-    for (int k = 0; k + 1 < n; ++k) {
-      const Eigen::Vector3d& a = rim[static_cast<std::size_t>(k)];
-      const Eigen::Vector3d& b = rim[static_cast<std::size_t>(k + 1)];
-      if ((a - centre).cross(b - centre).norm() < 1e-9) continue;
-      surface.push_back(triangle(centre, a, b, k));
-    }
+    const std::optional<random_fan::Case> fan = random_fan::next(random);
+    if (!fan) continue;
+    const auto& [X, centre, rim, surface] = *fan;
     const kerf::TetPieces pieces = kerf::split_tet_by_triangles(X, surface);
     CAPTURE(trial);
     // The surface's boundary: the rim's chords and the slit's two sides.

@@ -2,6 +2,7 @@
 // [u; a] stiffness and consistent mass, and the DOFs of a field given side by side.
 #pragma once
 
+#include "support/cut_body.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/fem/dof_map.hpp"
@@ -17,11 +18,7 @@
 
 namespace cut_body {
 
-// Sub-tetrahedra with Gauss rules of the degree asked for: exact for every polynomial integrand.
-inline kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece,
-                                         int degree) {
-  return kerf::subtet_rule(pieces, piece, degree);
-}
+using support::subtets;
 
 // The plane n . x = offset as a square of two triangles, 2 half_size wide, centred on the
 // plane's point nearest `centre`.
@@ -41,16 +38,10 @@ inline kerf::TriangleSurface plane_surface(const Eigen::Vector3d& normal, double
   return s;
 }
 
-// Everything a cut XFEM body keeps alive; `side(x)` says on which side of the plane x lies (+1 / -1).
-struct CutBody {
-  kerf::TetMesh mesh;
-  kerf::CutSurfaces cuts;
-  kerf::MeshPieces pieces;
-  kerf::SurfaceEnrichment enrichment;
-  kerf::CutXfemModel model;
+// The shared cut body (support/cut_body.hpp) with what the dynamics tests ask of it.
+struct CutBody : support::CutBody {
   CutBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::LinearMaterial& material)
-      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
-        enrichment(kerf::make_surface_enrichment(mesh, pieces)), model(mesh, material, pieces, enrichment, subtets) {}
+      : support::CutBody(std::move(m), std::move(surfaces), material) {}
 
   // A point inside piece p of tet t: its centroid (by a degree-1 rule), or the tet's.
   Eigen::Vector3d piece_centroid(Eigen::Index t, int p) const {

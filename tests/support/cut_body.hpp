@@ -1,0 +1,37 @@
+// A body cut by triangle-mesh cuts, with everything its XFEM model keeps alive (the model holds
+// the mesh, the pieces and the enrichment by reference), as the tests of chapters 4 and 6 build
+// it. The pieces are integrated with sub-tetrahedra of the degree the model asks for, exact for
+// every polynomial integrand, unless a test passes another rule.
+#pragma once
+
+#include "kerf/cut/cut_surfaces.hpp"
+#include "kerf/cut/mesh_pieces.hpp"
+#include "kerf/fem/linear_material.hpp"
+#include "kerf/mesh/triangle_surface.hpp"
+#include "kerf/quadrature/gauss_piece_rules.hpp"
+#include "kerf/xfem/cut_xfem_model.hpp"
+#include "kerf/xfem/surface_enrichment.hpp"
+
+#include <utility>
+#include <vector>
+
+namespace support {
+
+// Sub-tetrahedra with Gauss rules of the degree asked for.
+inline kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece, int degree) {
+  return kerf::subtet_rule(pieces, piece, degree);
+}
+
+struct CutBody {
+  kerf::TetMesh mesh;
+  kerf::CutSurfaces cuts;
+  kerf::MeshPieces pieces;
+  kerf::SurfaceEnrichment enrichment;
+  kerf::CutXfemModel model;
+  CutBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::LinearMaterial& material,
+          const kerf::PieceRuleFunction& rule = subtets)
+      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
+        enrichment(kerf::make_surface_enrichment(mesh, pieces)), model(mesh, material, pieces, enrichment, rule) {}
+};
+
+} // namespace support
