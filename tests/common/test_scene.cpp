@@ -90,6 +90,29 @@ TEST_CASE("defaults: the paper's material, linear, static, CHOLMOD") {
   CHECK(scene.mesh.order == 1);
 }
 
+TEST_CASE("the time integrators of chapter 6 read their own fields, and their defaults") {
+  const std::string m = box_mesh;
+  const auto time_of = [&](const std::string& time) { return kerf::parse_scene("{" + m + R"(, "time": )" + time + "}", "t.json", ".").time; };
+  const kerf::TimeSpec newmark = time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "initial_velocity": [0, 0, -1]})");
+  CHECK(newmark.beta == 0.25);
+  CHECK(newmark.gamma == 0.5);
+  CHECK(newmark.mass == "consistent");
+  CHECK(newmark.initial_velocity.z() == -1.0);
+  CHECK_FALSE(newmark.allow_unstable);
+  // A pair outside the unconditionally stable range, asked for on purpose.
+  const kerf::TimeSpec unstable = time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "beta": 0.1, "allow_unstable": true})");
+  CHECK(unstable.beta == 0.1);
+  CHECK(unstable.allow_unstable);
+  const kerf::TimeSpec damped = time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "gamma": 0.6, "beta": 0.3025, "mass": "hrz"})");
+  CHECK(damped.gamma == 0.6);
+  CHECK(damped.mass == "hrz");
+  // The explicit scheme lumps by default; HHT-alpha's alpha defaults to -0.1.
+  CHECK(time_of(R"({"integrator": "central_difference", "dt": 1e-4, "steps": 5})").mass == "lumped");
+  CHECK(time_of(R"({"integrator": "hht_alpha", "dt": 0.01, "steps": 5})").alpha == -0.1);
+  CHECK(time_of(R"({"integrator": "hht_alpha", "dt": 0.01, "steps": 5, "alpha": -0.3})").alpha == -0.3);
+  CHECK(time_of(R"({"integrator": "backward_euler", "dt": 0.01, "steps": 5, "rayleigh": [0.1, 0.001]})").rayleigh.x() == 0.1);
+}
+
 TEST_CASE("every malformed scene names the file and the field on one line") {
   struct Case {
     std::string text, field;
@@ -126,6 +149,19 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0, "steps": 10}})", "time.dt"},
       {"{" + m + R"(, "time": {"integrator": "euler"}})", "time.integrator"},
       {"{" + m + R"(, "time": {"integrator": "static", "dt": 0.1}})", "time.dt"},
+      {"{" + m + R"(, "time": {"integrator": "static", "mass": "lumped"}})", "time.mass"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 0}})", "time.steps"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "beta": 0.1}})", "time.gamma"},   // 2 beta < gamma
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "gamma": 0.4}})", "time.gamma"},  // gamma < 1/2
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "alpha": -0.1}})", "time.alpha"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "rayleigh": [-1, 0]}})", "time.rayleigh"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "mass": "lumpy"}})", "time.mass"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "tolerance": 0}})", "time.tolerance"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "allow_unstable": "yes"}})", "time.allow_unstable"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "initial_velocity": [1, 2]}})", "time.initial_velocity"},
+      {"{" + m + R"(, "time": {"integrator": "backward_euler", "dt": 0.01, "steps": 5, "beta": 0.25}})", "time.beta"},
+      {"{" + m + R"(, "time": {"integrator": "central_difference", "dt": 0.01, "steps": 5, "mass": "consistent"}})", "time.mass"},
+      {"{" + m + R"(, "time": {"integrator": "hht_alpha", "dt": 0.01, "steps": 5, "alpha": -0.5}})", "time.alpha"},
       {"{" + m + R"(, "output": {"every": 0}})", "output.every"},
       {"{" + m + R"(, "solver": {"type": "umfpack"}})", "solver.type"},
       {"{" + m + R"(, "solver": {"ordering": "colamd"}})", "solver.ordering"},

@@ -80,6 +80,12 @@ public:
     if (!fits) fail(name, "expected an integer that fits in 32 bits, got " + value.dump());
     return value.get<int>();
   }
+  bool boolean(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    const json& value = object_.at(key);
+    if (!value.is_boolean()) fail(field(key), "expected true or false, got " + type_name(value));
+    return value.get<bool>();
+  }
   std::string text(const std::string& key, const std::string& fallback) const {
     if (!has(key)) return fallback;
     const json& value = object_.at(key);
@@ -284,31 +290,64 @@ std::vector<CutSpec> read_cuts(const ObjectReader& r, const std::filesystem::pat
   });
 }
 
-/// "time": static, or Newmark with its step, count and parameters.
+/// "time": static, or a time integrator with its step, count, parameters, mass and damping
+/// (chapter 6, notes 6.3). Each integrator takes only the fields that mean something for it, and
+/// a Newmark or HHT pair outside its unconditionally stable range is refused unless
+/// "allow_unstable" says it is meant (the chapter charts what happens then).
 TimeSpec read_time(const ObjectReader& r) {
   TimeSpec time;
   if (!r.has("time")) return time;
   ObjectReader t(r.at("time"), "time", r.file());
-  t.allow_only({"integrator", "dt", "steps", "beta", "gamma", "rayleigh"});
+  t.allow_only({"integrator", "dt", "steps", "beta", "gamma", "alpha", "rayleigh", "mass", "tolerance", "initial_velocity",
+                "allow_unstable"});
   time.integrator = t.text("integrator", "static");
+  const bool newmark = time.integrator == "newmark", hht = time.integrator == "hht_alpha";
+  const bool dynamic = newmark || hht || time.integrator == "backward_euler" || time.integrator == "central_difference";
   if (time.integrator == "static") {
-    for (const char* key : {"dt", "steps", "beta", "gamma", "rayleigh"})
+    for (const char* key : {"dt", "steps", "beta", "gamma", "alpha", "rayleigh", "mass", "tolerance", "initial_velocity", "allow_unstable"})
       if (t.has(key)) t.fail(t.field(key), "only meaningful with a dynamic integrator");
-  } else if (time.integrator == "newmark") {
-    t.at("dt");
-    t.at("steps");
-    time.dt = t.number("dt", 0.0);
-    time.steps = t.integer("steps", 0);
+    return time;
+  }
+  if (!dynamic)
+    t.fail("time.integrator", "expected \"static\", \"newmark\", \"hht_alpha\", \"backward_euler\" or \"central_difference\", got \"" +
+                                  time.integrator + "\"");
+  if (!newmark)
+    for (const char* key : {"beta", "gamma"})
+      if (t.has(key)) t.fail(t.field(key), "only meaningful with \"newmark\" (" + time.integrator + " fixes its own)");
+  if (!hht && t.has("alpha")) t.fail("time.alpha", "only meaningful with \"hht_alpha\"");
+  t.at("dt");
+  t.at("steps");
+  time.dt = t.number("dt", 0.0);
+  time.steps = t.integer("steps", 0);
+  time.rayleigh = t.vector<2>("rayleigh", Eigen::Vector2d::Zero());
+  time.tolerance = t.number("tolerance", time.tolerance);
+  time.initial_velocity = t.vector<3>("initial_velocity", Eigen::Vector3d::Zero());
+  time.allow_unstable = t.boolean("allow_unstable", false);
+  time.mass = t.text("mass", time.integrator == "central_difference" ? "lumped" : "consistent");
+  if (!(time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
+  if (time.steps < 1) t.fail("time.steps", "expected a positive integer");
+  if ((time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
+  if (!(time.tolerance > 0.0 && time.tolerance < 1.0)) t.fail("time.tolerance", "expected a relative residual in (0, 1)");
+  const std::string lumped_schemes[] = {"lumped", "row_sum", "hrz", "virtual_tet", "schoch_eq_81_82"};
+  const bool lumped = std::find(std::begin(lumped_schemes), std::end(lumped_schemes), time.mass) != std::end(lumped_schemes);
+  if (!lumped && time.mass != "consistent")
+    t.fail("time.mass", "expected \"consistent\", \"lumped\" (per-piece \"virtual_tet\"), \"row_sum\", \"hrz\" or \"schoch_eq_81_82\", got \"" +
+                            time.mass + "\"");
+  if (time.integrator == "central_difference" && !lumped)
+    t.fail("time.mass", "the central difference is explicit: it needs a lumped (diagonal) mass");
+  if (newmark) {
     time.beta = t.number("beta", 0.25);
     time.gamma = t.number("gamma", 0.5);
-    time.rayleigh = t.vector<2>("rayleigh", Eigen::Vector2d::Zero());
-    if (!(time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
-    if (time.steps < 1) t.fail("time.steps", "expected a positive integer");
-    if (!(time.beta > 0.0 && time.beta <= 0.5)) t.fail("time.beta", "expected a number in (0, 0.5]");
+    if (!(time.beta > 0.0 && time.beta <= 0.5)) t.fail("time.beta", "expected a number in (0, 0.5] (beta = 0 is \"central_difference\")");
     if (!(time.gamma >= 0.0 && time.gamma <= 1.0)) t.fail("time.gamma", "expected a number in [0, 1]");
-    if ((time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
-  } else {
-    t.fail("time.integrator", "expected \"static\" or \"newmark\", got \"" + time.integrator + "\"");
+    // Unconditionally stable iff 2 beta >= gamma >= 1/2 (newmark.hpp).
+    if (!(2.0 * time.beta >= time.gamma && time.gamma >= 0.5) && !time.allow_unstable)
+      t.fail("time.gamma", "beta = " + std::to_string(time.beta) + ", gamma = " + std::to_string(time.gamma) +
+                               " is not unconditionally stable (it needs 2 beta >= gamma >= 1/2); set \"allow_unstable\": true to run it anyway");
+  }
+  if (hht) {
+    time.alpha = t.number("alpha", time.alpha);
+    if (!(time.alpha >= -1.0 / 3.0 && time.alpha <= 0.0)) t.fail("time.alpha", "expected a number in [-1/3, 0]");
   }
   return time;
 }

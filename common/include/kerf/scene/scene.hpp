@@ -75,11 +75,22 @@ struct QuadratureSpec {
 
 /// Time integration: "static", or "newmark" with its parameters (chapter 6 on).
 struct TimeSpec {
+  /// "static" (chapters 1-5), "newmark", "hht_alpha", "backward_euler" or "central_difference"
   std::string integrator = "static";
   double dt = 0.0;                          ///< s
   int steps = 0;
-  double beta = 0.25, gamma = 0.5;          ///< Newmark parameters
-  Eigen::Vector2d rayleigh{0.0, 0.0};       ///< damping D = alpha M + beta K
+  double beta = 0.25, gamma = 0.5;          ///< Newmark parameters ("newmark" only)
+  double alpha = -0.1;                      ///< HHT-alpha's alpha, in [-1/3, 0] ("hht_alpha" only)
+  Eigen::Vector2d rayleigh{0.0, 0.0};       ///< damping C = alpha M + beta K
+  /// "consistent" or a lumped scheme: "lumped" (the per-piece "virtual_tet", which lets a freed
+  /// piece fall at g), "row_sum", "hrz", "schoch_eq_81_82" (dynamics/lumped_mass.hpp). The
+  /// default is "consistent", "lumped" for the central difference (which needs a diagonal mass).
+  std::string mass = "consistent";
+  /// The relative residual each step's solve stops at when the solver is iterative. Provisional:
+  /// chapter 6's speed study is to choose it (issue 11, item 8).
+  double tolerance = 1e-8;
+  Eigen::Vector3d initial_velocity{0.0, 0.0, 0.0}; ///< m/s, the same at every node
+  bool allow_unstable = false;              ///< run a Newmark pair outside 2 beta >= gamma >= 1/2, or an explicit step above its limit
 };
 
 /// Everything a scene file says. Defaults are those of the book's scene reference page.
