@@ -1,4 +1,5 @@
 #include "kerf/dynamics/hht_alpha.hpp"
+#include "kerf/dynamics/newmark.hpp"
 
 #include <stdexcept>
 
@@ -19,21 +20,16 @@ HhtAlphaIntegrator::HhtAlphaIntegrator(const LinearDynamicSystem& system, double
 StepEnergy HhtAlphaIntegrator::step(DynamicState& state) {
   const double alpha = alpha_, beta = beta_, gamma = gamma_, dt = dt_;
   const ReducedDynamicSystem& R = reduced_;
+  const NewmarkParameters newmark{beta, gamma};
   const Eigen::VectorXd u = R.restrict_to_free(state.u), v = R.restrict_to_free(state.v), a = R.restrict_to_free(state.a);
-  const Eigen::VectorXd u_predicted = u + dt * v + (dt * dt * (0.5 - beta)) * a;
-  const Eigen::VectorXd v_predicted = v + (dt * (1.0 - gamma)) * a;
+  const NewmarkPrediction predicted = newmark_predict(u, v, a, dt, newmark);
   // f_n on the free DOFs, lifted, is what the averaged K u_n term needs too: free_load(t) is
   // f_f(t) - K_fc u_c, and K_fc u_c is the same at both ends (u_c is held).
-  const Eigen::VectorXd rhs = (1.0 + alpha) * (R.free_load(state.t + dt) - R.C_ff() * v_predicted - R.K_ff() * u_predicted) -
+  const Eigen::VectorXd rhs = (1.0 + alpha) * (R.free_load(state.t + dt) - R.C_ff() * predicted.v - R.K_ff() * predicted.u) -
                               alpha * (R.free_load(state.t) - R.C_ff() * v - R.K_ff() * u);
   Eigen::VectorXd a_next = a;
   solver_->solve(rhs, a_next);
-
-  DynamicState next;
-  next.t = state.t + dt;
-  next.u = R.expand(u_predicted + (beta * dt * dt) * a_next, true);
-  next.v = R.expand(v_predicted + (gamma * dt) * a_next, false);
-  next.a = R.expand(a_next, false);
+  DynamicState next = newmark_correct(R, state.t + dt, predicted, a_next, dt, newmark);
 
   const LinearDynamicSystem& S = R.system();
   const Eigen::VectorXd du = next.u - state.u, v_bar = 0.5 * (next.v + state.v);

@@ -14,21 +14,30 @@ NewmarkIntegrator::NewmarkIntegrator(const LinearDynamicSystem& system, double d
   solver_->factorize(A);
 }
 
+NewmarkPrediction newmark_predict(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const Eigen::VectorXd& a, double dt,
+                                  const NewmarkParameters& parameters) {
+  return {u + dt * v + (dt * dt * (0.5 - parameters.beta)) * a, v + (dt * (1.0 - parameters.gamma)) * a};
+}
+
+DynamicState newmark_correct(const ReducedDynamicSystem& reduced, double t_next, const NewmarkPrediction& predicted,
+                             const Eigen::VectorXd& a_next, double dt, const NewmarkParameters& parameters) {
+  DynamicState next;
+  next.t = t_next;
+  next.u = reduced.expand(predicted.u + (parameters.beta * dt * dt) * a_next, true);
+  next.v = reduced.expand(predicted.v + (parameters.gamma * dt) * a_next, false);
+  next.a = reduced.expand(a_next, false);
+  return next;
+}
+
 StepEnergy NewmarkIntegrator::step(DynamicState& state) {
   const double beta = parameters_.beta, gamma = parameters_.gamma, dt = dt_;
   const ReducedDynamicSystem& R = reduced_;
-  const Eigen::VectorXd u = R.restrict_to_free(state.u), v = R.restrict_to_free(state.v), a = R.restrict_to_free(state.a);
-  const Eigen::VectorXd u_predicted = u + dt * v + (dt * dt * (0.5 - beta)) * a;
-  const Eigen::VectorXd v_predicted = v + (dt * (1.0 - gamma)) * a;
-  const Eigen::VectorXd rhs = R.free_load(state.t + dt) - R.C_ff() * v_predicted - R.K_ff() * u_predicted;
+  const Eigen::VectorXd a = R.restrict_to_free(state.a);
+  const NewmarkPrediction predicted = newmark_predict(R.restrict_to_free(state.u), R.restrict_to_free(state.v), a, dt, parameters_);
+  const Eigen::VectorXd rhs = R.free_load(state.t + dt) - R.C_ff() * predicted.v - R.K_ff() * predicted.u;
   Eigen::VectorXd a_next = a;
   solver_->solve(rhs, a_next);
-
-  DynamicState next;
-  next.t = state.t + dt;
-  next.u = R.expand(u_predicted + (beta * dt * dt) * a_next, true);
-  next.v = R.expand(v_predicted + (gamma * dt) * a_next, false);
-  next.a = R.expand(a_next, false);
+  DynamicState next = newmark_correct(R, state.t + dt, predicted, a_next, dt, parameters_);
 
   // The energy of the step, on full vectors (the prescribed entries do not change).
   const LinearDynamicSystem& S = R.system();

@@ -19,6 +19,20 @@ struct NewmarkParameters {
   double gamma = 0.5;
 };
 
+/// Newmark's predictor on the free DOFs: where u and v get in a step of dt if a_{n+1} were 0,
+///   u~ = u_n + dt v_n + dt^2 (1/2 - beta) a_n,   v~ = v_n + dt (1 - gamma) a_n.
+struct NewmarkPrediction {
+  Eigen::VectorXd u, v;
+};
+NewmarkPrediction newmark_predict(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const Eigen::VectorXd& a, double dt,
+                                  const NewmarkParameters& parameters);
+
+/// Newmark's corrector: the state at t_next from the prediction and the free DOFs' a_{n+1},
+///   u_{n+1} = u~ + beta dt^2 a_{n+1},   v_{n+1} = v~ + gamma dt a_{n+1},
+/// expanded to all DOFs (the prescribed ones keep their values). HHT-alpha shares both steps.
+DynamicState newmark_correct(const ReducedDynamicSystem& reduced, double t_next, const NewmarkPrediction& predicted,
+                             const Eigen::VectorXd& a_next, double dt, const NewmarkParameters& parameters);
+
 /// Newmark in its acceleration form (Hughes 2000, section 9.1), one linear solve per step:
 ///
 ///   predict   u~ = u_n + dt v_n + dt^2 (1/2 - beta) a_n,   v~ = v_n + dt (1 - gamma) a_n,
