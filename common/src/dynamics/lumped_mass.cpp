@@ -1,6 +1,6 @@
 #include "kerf/dynamics/lumped_mass.hpp"
 
-#include "kerf/fem/tet_mass.hpp"
+#include "kerf/xfem/cut_xfem_mass.hpp"
 
 #include <stdexcept>
 #include <vector>
@@ -8,34 +8,6 @@
 namespace kerf {
 
 namespace {
-
-// The scalar consistent mass of unit density, int_p N_a N_b dV (n x n), of every piece tet t
-// integrates: its split pieces, or the whole tet as one piece.
-std::vector<Eigen::MatrixXd> unit_piece_masses(const CutXfemModel& model, Eigen::Index t, const PieceRuleFunction& rule) {
-  const TetMesh& mesh = model.mesh();
-  const int n = mesh.nodes_per_tet();
-  if (!model.split(t)) {
-    if (n == 4) return {tet4_mass(tet_corners(mesh, t), 1.0)};
-    Eigen::Matrix<double, 10, 3> X;
-    for (int a = 0; a < 10; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
-    return {tet10_mass(X, 1.0)};
-  }
-  const MeshPieces& pieces = model.pieces();
-  const TetPieces& tp = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
-  const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
-  std::vector<Eigen::MatrixXd> masses;
-  for (int p = 0; p < pieces.num_pieces(t); ++p) {
-    // N_a N_b has degree 2 on a Tet4 piece and 4 on a Tet10 piece (cut_xfem_mass.hpp).
-    const PieceQuadratureRule r = rule(X, tp, p, 2 * mesh.order());
-    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
-    for (std::size_t q = 0; q < r.points.size(); ++q) {
-      const Eigen::VectorXd N = model.shape_values(t, r.points[q]);
-      m += r.weights[q] * N * N.transpose();
-    }
-    masses.push_back(m);
-  }
-  return masses;
-}
 
 // The diagonal D_p (n entries, kg) that `scheme` gives the piece with unit-density mass m.
 Eigen::VectorXd piece_diagonal(const Eigen::MatrixXd& m, double density, LumpingScheme scheme) {
@@ -61,7 +33,7 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
     for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, value);
   };
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    const std::vector<Eigen::MatrixXd> masses = unit_piece_masses(model, t, rule);
+    const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, 1.0, rule);
     if (scheme == LumpingScheme::schoch_eq_81_82) {
       double element_volume = 0.0;
       for (const Eigen::MatrixXd& m : masses) element_volume += m.sum();
@@ -103,7 +75,7 @@ Eigen::VectorXd lumped_gravity_load(const CutXfemModel& model, double density, c
   const TetMesh& mesh = model.mesh();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    const std::vector<Eigen::MatrixXd> masses = unit_piece_masses(model, t, rule);
+    const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, 1.0, rule);
     for (std::size_t p = 0; p < masses.size(); ++p) {
       const Eigen::VectorXd D = piece_diagonal(masses[p], density, scheme);
       // T_p^T (D 1 kron g): the phantom node's weight D_a g goes to u_i and to a_k.

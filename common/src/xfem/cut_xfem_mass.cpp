@@ -6,11 +6,37 @@
 
 namespace kerf {
 
-Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule) {
+std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Eigen::Index t, double density,
+                                                   const PieceRuleFunction& rule) {
   const TetMesh& mesh = model.mesh();
   const MeshPieces& pieces = model.pieces();
   const int n = mesh.nodes_per_tet();
-  const int degree = 2 * mesh.order();
+  if (!model.split(t) || pieces.num_pieces(t) == 1) {
+    // The whole tet, possibly with enrichments that are 1 all over it.
+    if (n == 4) return {tet4_mass(tet_corners(mesh, t), density)};
+    Eigen::Matrix<double, 10, 3> X;
+    for (int a = 0; a < 10; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
+    return {tet10_mass(X, density)};
+  }
+  const TetPieces& tp = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
+  const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
+  std::vector<Eigen::MatrixXd> masses;
+  for (int p = 0; p < pieces.num_pieces(t); ++p) {
+    // N_a N_b has degree 2 on a Tet4 piece and 4 on a Tet10 piece.
+    const PieceQuadratureRule r = rule(X, tp, p, 2 * mesh.order());
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t q = 0; q < r.points.size(); ++q) {
+      const Eigen::VectorXd N = model.shape_values(t, r.points[q]);
+      m += density * r.weights[q] * N * N.transpose();
+    }
+    masses.push_back(m);
+  }
+  return masses;
+}
+
+Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule) {
+  const TetMesh& mesh = model.mesh();
+  const int n = mesh.nodes_per_tet();
   std::vector<Eigen::Triplet<double>> entries;
   // Adds T_p^T (m kron I_3) T_p for the scalar mass m (n x n) of piece p of tet t: node a's
   // value on the piece is u_a, plus a_k where enrichment k is 1 there, so its row of m goes to
@@ -28,32 +54,8 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
             for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, m(a, b));
   };
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    const int np = model.split(t) ? pieces.num_pieces(t) : 1;
-    const int e = pieces.entry[static_cast<std::size_t>(t)];
-    if (np == 1) {
-      // The whole tet, possibly with enrichments that are 1 all over it.
-      Eigen::MatrixXd m;
-      if (n == 4) {
-        m = tet4_mass(tet_corners(mesh, t), density);
-      } else {
-        Eigen::Matrix<double, 10, 3> X;
-        for (int a = 0; a < 10; ++a) X.row(a) = mesh.nodes.row(mesh.tets(t, a));
-        m = tet10_mass(X, density);
-      }
-      add(t, 0, m);
-      continue;
-    }
-    const TetPieces& tp = pieces.tets[static_cast<std::size_t>(e)];
-    const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
-    for (int p = 0; p < np; ++p) {
-      const PieceQuadratureRule r = rule(X, tp, p, degree);
-      Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
-      for (std::size_t q = 0; q < r.points.size(); ++q) {
-        const Eigen::VectorXd N = model.shape_values(t, r.points[q]);
-        m += density * r.weights[q] * N * N.transpose();
-      }
-      add(t, p, m);
-    }
+    const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, density, rule);
+    for (std::size_t p = 0; p < masses.size(); ++p) add(t, static_cast<int>(p), masses[p]);
   }
   const Eigen::Index size = 3 * model.num_dof_nodes();
   Eigen::SparseMatrix<double> M(size, size);

@@ -375,10 +375,12 @@ Eigen::Vector3d CutXfemModel::displacement_at(const Eigen::VectorXd& u, Eigen::I
     if (found.empty()) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
     // A point on the cut lies in two or more pieces: take one above a cut (H(0) = +1, as for
     // the home part of a node on the cut, surface_enrichment.hpp), else the first.
-    p = found.front();
-    for (const int q : found)
-      for (const PieceBoundaryPolygon& b : tp.pieces[static_cast<std::size_t>(q)].boundary)
-        if (b.on_cut && b.cut_side > 0 && p == found.front()) p = q;
+    const auto above_a_cut = [&](int q) {
+      const std::vector<PieceBoundaryPolygon>& boundary = tp.pieces[static_cast<std::size_t>(q)].boundary;
+      return std::any_of(boundary.begin(), boundary.end(), [](const PieceBoundaryPolygon& b) { return b.on_cut && b.cut_side > 0; });
+    };
+    const auto above = std::find_if(found.begin(), found.end(), above_a_cut);
+    p = above != found.end() ? *above : found.front();
   }
   const Eigen::MatrixX3d u_p = phantom_displacements(u, t, p);
   if (mesh_.order() == 1) return (tet4_shape(xi).transpose() * u_p).transpose();

@@ -31,7 +31,7 @@ EnrichmentVolumes enrichment_volumes(const TetMesh& mesh, const MeshPieces& piec
 std::vector<int> sliver_enrichments(const EnrichmentVolumes& volumes, double epsilon) {
   std::vector<int> constrained;
   for (std::size_t k = 0; k < volumes.enriched.size(); ++k) {
-    const double fraction = volumes.enriched[k] / volumes.support[k];
+    const double fraction = volumes.fraction(static_cast<Eigen::Index>(k));
     // Not "fraction < epsilon" alone: a fraction that is NaN (an empty support cannot happen,
     // but a rule's NaN weights could) must be constrained too.
     if (!(fraction >= epsilon) || volumes.enriched[k] <= 0.0) constrained.push_back(static_cast<int>(k));

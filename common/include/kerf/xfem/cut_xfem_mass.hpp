@@ -21,4 +21,11 @@ namespace kerf {
 /// element masses.
 Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule);
 
+/// The scalar masses rho int_p N_a N_b dV (n x n) of every piece tet t integrates, in piece
+/// order: its split pieces (each with `rule` of degree 2 order), or the whole tet as one
+/// (chapter 1's element mass). What assemble_cut_xfem_mass() scatters, and what the lumped
+/// masses of chapter 6 (dynamics/lumped_mass.hpp) lump piece by piece.
+std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Eigen::Index t, double density,
+                                                   const PieceRuleFunction& rule);
+
 } // namespace kerf
