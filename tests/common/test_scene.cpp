@@ -126,6 +126,10 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "material": {"young": -1}})", "material.young"},
       {"{" + m + R"(, "material": {"poison": 0.3}})", "material.poison"},                            // typo inside
       {R"({"material": {}})", "mesh"},                                                                // missing mesh
+      {"{" + m + R"(, "crack_tip": {"enrichment": "tip"}})", "crack_tip.enrichment"},
+      {"{" + m + R"(, "crack_tip": {"radius": -0.01}})", "crack_tip.radius"},
+      {"{" + m + R"(, "crack_tip": {"radius": "far"}})", "crack_tip.radius"},
+      {"{" + m + R"(, "crack_tip": {"radius": 0.01, "shifted": true}})", "crack_tip.shifted"},
       {R"({"mesh": {"box": {"min": [0,0,0], "max": [1,1,1], "cells": [1, 0, 1]}}})", "mesh.box.cells[1]"},
       {R"({"mesh": {"box": {"min": [0,0,0], "max": [1,0,1], "cells": [1, 1, 1]}}})", "mesh.box.max"},
       {R"({"mesh": {"box": {"min": [0,0], "max": [1,1,1], "cells": [1, 1, 1]}}})", "mesh.box.min"},
@@ -185,6 +189,23 @@ TEST_CASE("a chapter refuses the methods it has not taught yet") {
   CHECK_THROWS_WITH_AS(kerf::require_features(scene, {.corotational = true, .cuts = true, .dynamics = true}),
                        doctest::Contains("chapter 4"), kerf::InputError);
   CHECK_NOTHROW(kerf::require_features(scene, {.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true}));
+}
+
+TEST_CASE("the crack_tip field of chapter 5: branch by default, a radius only when given, refused before chapter 5") {
+  const std::string m = box_mesh;
+  const kerf::Scene plain = kerf::parse_scene("{" + m + "}", "plain.json", "/data");
+  CHECK_FALSE(plain.crack_tip.given);
+  CHECK(plain.crack_tip.enrichment == "branch");
+  CHECK_FALSE(plain.crack_tip.radius.has_value());
+  const kerf::Scene topological = kerf::parse_scene("{" + m + R"(, "crack_tip": {"radius": 0}})", "tip.json", "/data");
+  CHECK(topological.crack_tip.given);
+  REQUIRE(topological.crack_tip.radius.has_value());
+  CHECK(*topological.crack_tip.radius == 0.0);
+  const kerf::Scene none = kerf::parse_scene("{" + m + R"(, "crack_tip": {"enrichment": "none"}})", "none.json", "/data");
+  CHECK(none.crack_tip.enrichment == "none");
+  CHECK_THROWS_WITH_AS(kerf::require_features(topological, {.corotational = true, .cuts = true, .cut_quadrature = true}),
+                       doctest::Contains("chapter 5"), kerf::InputError);
+  CHECK_NOTHROW(kerf::require_features(topological, {.crack_tip = true}));
 }
 
 TEST_CASE("a scene file that does not exist is an InputError naming it") {

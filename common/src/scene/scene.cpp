@@ -402,6 +402,23 @@ QuadratureSpec read_quadrature(const ObjectReader& r) {
   return spec;
 }
 
+/// "crack_tip": branch enrichment where a cut ends inside the body (chapter 5 on).
+CrackTipSpec read_crack_tip(const ObjectReader& r) {
+  CrackTipSpec spec;
+  if (!r.has("crack_tip")) return spec;
+  spec.given = true;
+  ObjectReader c(r.at("crack_tip"), "crack_tip", r.file());
+  c.allow_only({"enrichment", "radius"});
+  spec.enrichment = c.text("enrichment", spec.enrichment);
+  if (spec.enrichment != "branch" && spec.enrichment != "none")
+    c.fail("crack_tip.enrichment", "expected \"branch\" or \"none\", got \"" + spec.enrichment + "\"");
+  if (c.has("radius")) {
+    spec.radius = c.number("radius", 0.0);
+    if (!(*spec.radius >= 0.0) || !std::isfinite(*spec.radius)) c.fail("crack_tip.radius", "expected a finite number >= 0 (m)");
+  }
+  return spec;
+}
+
 /// "solver": which linear solver, and how hard an iterative one works.
 SolverSettings read_solver(const ObjectReader& r) {
   SolverSettings solver;
@@ -451,8 +468,8 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
     throw InputError(file, "JSON", what);
   }
   ObjectReader r(document, "", file);
-  r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "quadrature", "time", "output",
-                "solver", "quasi_static"});
+  r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "quadrature", "crack_tip", "time",
+                "output", "solver", "quasi_static"});
 
   Scene scene;
   scene.source = source;
@@ -467,6 +484,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.traction = read_tractions(r);
   scene.cuts = read_cuts(r, base);
   scene.quadrature = read_quadrature(r);
+  scene.crack_tip = read_crack_tip(r);
   scene.time = read_time(r);
   scene.output_every = read_output_every(r);
   scene.quasi_static = read_quasi_static(r);
@@ -495,6 +513,8 @@ void require_features(const Scene& scene, const SceneFeatures& taught) {
       if (!scene.cuts[i].is_rectangle)
         throw InputError(file, "cuts[" + std::to_string(i) + "].surface",
                          "triangle-mesh cuts are taught from chapter 4 on (04_cut_quadrature)");
+  if (scene.crack_tip.given && !taught.crack_tip)
+    throw InputError(file, "crack_tip", "crack-tip enrichment is taught from chapter 5 on (05_crack_tip)");
   if (scene.time.integrator != "static" && !taught.dynamics)
     throw InputError(file, "time.integrator", "\"" + scene.time.integrator + "\" is taught from chapter 6 on (06_newmark)");
 }

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,19 @@ struct QuadratureSpec {
   bool given = false; ///< the scene has a "quadrature" field (chapters before 4 refuse it)
 };
 
+/// Crack-tip (branch) enrichment where a cut ends inside the body (chapter 5 on):
+/// `"crack_tip": {"enrichment": "branch" | "none", "radius": r}`.
+struct CrackTipSpec {
+  /// "branch": the nodes near a cut's front get the four branch functions (Paulus section 3.4);
+  /// "none": chapter 4's rule, the cut ends at the last row of enriched nodes.
+  std::string enrichment = "branch";
+  /// Geometric enrichment's radius (m): every node within it of a front is branch enriched,
+  /// beside the nodes of the tets the front passes through (radius 0: those alone, the
+  /// topological rule). Not given: the chapter's default (chapters/05_crack_tip says which).
+  std::optional<double> radius;
+  bool given = false; ///< the scene has a "crack_tip" field (chapters before 5 refuse it)
+};
+
 /// Time integration: "static", or "newmark" with its parameters (chapter 6 on).
 struct TimeSpec {
   /// "static" (chapters 1-5), "newmark", "hht_alpha", "backward_euler" or "central_difference"
@@ -105,6 +119,7 @@ struct Scene {
   std::vector<TractionSpec> traction;
   std::vector<CutSpec> cuts;
   QuadratureSpec quadrature;
+  CrackTipSpec crack_tip;
   TimeSpec time;
   int output_every = 1;                  ///< write every n-th step
   SolverSettings solver;
@@ -128,6 +143,7 @@ struct SceneFeatures {
   bool cuts = false;
   bool dynamics = false;
   bool cut_quadrature = false; ///< triangle-mesh cuts, several cuts, cut Tet10, the "quadrature" field (chapter 4)
+  bool crack_tip = false;      ///< the "crack_tip" field (chapter 5)
 };
 
 /// Throws InputError if `scene` needs a method that is not in `taught`.
