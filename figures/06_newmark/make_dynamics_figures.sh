@@ -15,8 +15,8 @@ cmake --build "$build" -j1 --target 06_dynamics_study
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/06_dynamics_study" --out "$out" | tee "$out/dynamics_stdout.txt"
-for file in modes_frequencies.csv period_elongation.csv period_history.csv energy_time.csv energy_dissipation.csv dynamics_stdout.txt; do
+OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/06_dynamics_study" --out "$out" | tee "$out/modes_period_energy_stdout.txt"
+for file in modes_frequencies.csv period_elongation.csv period_history.csv energy_time.csv energy_dissipation.csv modes_period_energy_stdout.txt; do
   cp "$out/$file" "$here/$file"
 done
 
