@@ -157,3 +157,35 @@ TEST_CASE("backward Euler: mode 1 free vibration loses 1 - 1 / (1 + omega^2 dt^2
     CHECK(account.numerical == doctest::Approx(start - expected).epsilon(1e-9));
   }
 }
+
+TEST_CASE("lowest_eigenmodes on spring chains: lambda_k = 4 sin^2(k pi / (2 (n + 1))) fixed-fixed, 4 sin^2(k pi / (2 n)) free") {
+  // n unit masses joined by unit springs: K = tridiag(-1, 2, -1) with both ends held (fixed-fixed),
+  // or with 1 in the two corners (free-free, a rigid mode at lambda = 0, which needs a shift
+  // below 0); M = I. The closed forms are the discrete sine and cosine modes.
+  const int n = 60, count = 5;
+  std::vector<Eigen::Triplet<double>> fixed, free, identity;
+  for (int i = 0; i < n; ++i) {
+    fixed.emplace_back(i, i, 2.0);
+    free.emplace_back(i, i, (i == 0 || i == n - 1) ? 1.0 : 2.0);
+    identity.emplace_back(i, i, 1.0);
+    if (i + 1 < n)
+      for (auto* list : {&fixed, &free}) list->emplace_back(i, i + 1, -1.0), list->emplace_back(i + 1, i, -1.0);
+  }
+  Eigen::SparseMatrix<double> K_fixed(n, n), K_free(n, n), M(n, n);
+  K_fixed.setFromTriplets(fixed.begin(), fixed.end());
+  K_free.setFromTriplets(free.begin(), free.end());
+  M.setFromTriplets(identity.begin(), identity.end());
+  const kerf::EigenModes fixed_modes = kerf::lowest_eigenmodes(K_fixed, M, count);
+  const kerf::EigenModes free_modes = kerf::lowest_eigenmodes(K_free, M, count, -0.01);
+  REQUIRE(fixed_modes.converged);
+  REQUIRE(free_modes.converged);
+  for (int k = 0; k < count; ++k) {
+    // Converged to 1e-12 relative; the closed form is evaluated to round-off.
+    CHECK(fixed_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin((k + 1) * M_PI / (2.0 * (n + 1))), 2)).epsilon(1e-10));
+    if (k == 0) CHECK(std::abs(free_modes.lambda[0]) < 1e-12);
+    else CHECK(free_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin(k * M_PI / (2.0 * n)), 2)).epsilon(1e-10));
+  }
+  CHECK_THROWS_AS(kerf::lowest_eigenmodes(K_fixed, M, 0), std::invalid_argument);
+  CHECK_THROWS_AS(kerf::lowest_eigenmodes(K_fixed, M, n + 1), std::invalid_argument);
+  CHECK_THROWS_AS(kerf::lowest_eigenmodes(K_fixed, Eigen::SparseMatrix<double>(n - 1, n - 1), 1), std::invalid_argument);
+}

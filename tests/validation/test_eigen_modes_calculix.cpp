@@ -26,6 +26,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -155,5 +156,27 @@ TEST_CASE("the clamped Tet10 beam's ten lowest eigenvalues: Kerf's subspace iter
       CHECK(modes.lambda[k] < ccx_lambda[k]);
     }
     CHECK((ccx_lambda[0] - modes.lambda[0]) / ccx_lambda[0] < 2e-5);
+  }
+}
+
+TEST_CASE("the frequency deck refuses loads and a missing density; a .dat without eigenvalues is an error naming the file") {
+  const kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1});
+  const std::filesystem::path folder = std::filesystem::path(KERF_BINARY_DIR) / "tests" / "calculix" / "eigen_modes_input";
+  std::filesystem::create_directories(folder);
+  kerf::CalculixJob job;
+  job.material = beam_material;
+  job.procedure = kerf::CalculixProcedure::frequency;
+  job.gravity = Eigen::Vector3d(0, 0, -9.81);
+  CHECK_THROWS_AS(kerf::write_calculix_deck(folder / "loaded.inp", mesh, job), std::invalid_argument);
+  job.gravity.setZero();
+  job.material.density = 0.0;
+  CHECK_THROWS_AS(kerf::write_calculix_deck(folder / "massless.inp", mesh, job), std::invalid_argument);
+  const std::filesystem::path dat = folder / "no_eigenvalues.dat";
+  std::ofstream(dat) << " displacements (vx,vy,vz) for set NALL and time  0.1000000E+01\n\n  1  0.0  0.0  0.0\n";
+  try {
+    kerf::read_calculix_eigenvalues(dat);
+    FAIL("read_calculix_eigenvalues accepted a file without an eigenvalue block");
+  } catch (const std::runtime_error& error) {
+    CHECK(std::string(error.what()).find(dat.string()) != std::string::npos);
   }
 }

@@ -46,7 +46,10 @@ EigenModes lowest_eigenmodes(const Eigen::SparseMatrix<double>& K, const Eigen::
     if (ritz.info() != Eigen::Success) throw std::runtime_error("lowest_eigenmodes: the Ritz problem failed (M not positive definite?)");
     X = X_bar * ritz.eigenvectors(); // M-orthonormal: Q^T M_r Q = I
     modes.lambda = ritz.eigenvalues().head(count);
-    modes.converged = ((modes.lambda - previous).cwiseAbs().array() <= tolerance * modes.lambda.cwiseAbs().array()).all();
+    // Relative to |lambda|, or to its distance from the shift where that is larger: a rigid
+    // mode's lambda = 0 (found with a negative shift) settles at round-off, never relatively.
+    const Eigen::ArrayXd scale = modes.lambda.cwiseAbs().array().max((modes.lambda.array() - shift).abs());
+    modes.converged = ((modes.lambda - previous).cwiseAbs().array() <= tolerance * scale).all();
     previous = modes.lambda;
     if (modes.converged) break;
   }

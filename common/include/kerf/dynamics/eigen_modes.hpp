@@ -29,7 +29,8 @@ struct EigenModes {
 /// on q = max(2 count, count + 8) vectors (Bathe's choice), the start block pseudo-random with a
 /// fixed seed (reproducible, and almost surely not orthogonal to a wanted mode). Eigenvalue k
 /// converges like (lambda_k / lambda_{q+1})^(2 iterations) after the shift; we stop when every
-/// wanted lambda changes by less than `tolerance` relative between two iterations. The shift
+/// wanted lambda changes by less than `tolerance` times max(|lambda|, |lambda - shift|) between
+/// two iterations (the second term lets a rigid mode, lambda = 0, converge). The shift
 /// must not be an eigenvalue; 0 serves a clamped body (K positive definite), a small negative
 /// shift a free one. Bathe's Sturm sequence check, which proves no eigenvalue was skipped, is
 /// not done: a test against an independent solver (CalculiX *FREQUENCY) stands in for it.
