@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <complex>
+#include <numbers>
 #include <vector>
 
 namespace {
@@ -75,7 +76,7 @@ TEST_CASE("Newmark's average acceleration: the beam under sudden gravity follows
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(beam.system.M.rows());
     kerf::DynamicState state = kerf::consistent_initial_state(reduced, zero, zero, 0.0, {});
     // Two numerical periods, at least 8 steps.
-    const int steps = std::max(8, static_cast<int>(std::ceil(2.0 * 2.0 * M_PI / theta)));
+    const int steps = std::max(8, static_cast<int>(std::ceil(2.0 * 2.0 * std::numbers::pi / theta)));
     double worst = 0.0, worst_exact_phase = 0.0;
     for (int n = 1; n <= steps; ++n) {
       newmark.step(state);
@@ -181,9 +182,9 @@ TEST_CASE("lowest_eigenmodes on spring chains: lambda_k = 4 sin^2(k pi / (2 (n +
   REQUIRE(free_modes.converged);
   for (int k = 0; k < count; ++k) {
     // Converged to 1e-12 relative; the closed form is evaluated to round-off.
-    CHECK(fixed_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin((k + 1) * M_PI / (2.0 * (n + 1))), 2)).epsilon(1e-10));
+    CHECK(fixed_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin((k + 1) * std::numbers::pi / (2.0 * (n + 1))), 2)).epsilon(1e-10));
     if (k == 0) CHECK(std::abs(free_modes.lambda[0]) < 1e-12);
-    else CHECK(free_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin(k * M_PI / (2.0 * n)), 2)).epsilon(1e-10));
+    else CHECK(free_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin(k * std::numbers::pi / (2.0 * n)), 2)).epsilon(1e-10));
   }
   CHECK_THROWS_AS(kerf::lowest_eigenmodes(K_fixed, M, 0), std::invalid_argument);
   CHECK_THROWS_AS(kerf::lowest_eigenmodes(K_fixed, M, n + 1), std::invalid_argument);
