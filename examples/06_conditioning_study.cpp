@@ -24,13 +24,14 @@
 
    We assemble A = M + dt^2 K (consistent XFEM mass, linear XFEM stiffness, dt = 1e-3 s: the
    matrix of a backward Euler step without damping, the paper's choice) and write its 2-norm
-   condition number (dense eigenvalues, dynamics/newton_matrix_conditioning.hpp) for five
+   condition number (dense eigenvalues, dynamics/newton_matrix_conditioning.hpp) for seven
    variants: bare; Jacobi-scaled; with Koschier's bilateral preconditioner (eqs. 23-27, v for V
    in eq. 26); bare after eq. 22's constraining (epsilon = 1e-9); preconditioned and
-   constrained. Files in --out:
+   constrained; and, Kerf's addition, in the part basis (dynamics/part_basis.hpp) with Jacobi
+   scaling, without and with eq. 22. Files in --out:
      conditioning_sweep.csv  one row per cut position: x_c, d (distance to the nearer face),
                  the enrichments, how many eq. 22 constrains, the smallest V_enr / V_supp and
-                 the five condition numbers; and the uncut cube as the row x_c = NaN;
+                 the seven condition numbers; and the uncut cube as the row x_c = NaN;
      conditioning_slopes.csv the growth exponents p of kappa ~ d^-p as d -> 0, fitted by least
                  squares on log kappa against log d on each side's points: 1e-4 <= d <= 1e-2 for
                  the unconstrained variants, 1e-8 <= d <= 1e-3 for the constrained ones.
@@ -135,25 +136,31 @@ int main(int argc, char** argv) {
     for (const auto& [x_c, d] : cs::positions(options->quick)) rows.push_back({x_c, d, cs::measure(x_c)});
 
     std::ofstream csv(options->out / "conditioning_sweep.csv");
-    csv << "x_c,d,enrichments,constrained,smallest_fraction,plain,jacobi,koschier,plain_constrained,koschier_constrained\n";
+    csv << "x_c,d,enrichments,constrained,smallest_fraction,plain,jacobi,koschier,plain_constrained,koschier_constrained,part_jacobi,"
+           "part_jacobi_constrained\n";
     csv.precision(10);
     for (const cs::Row& r : rows)
       csv << r.x_c << ',' << r.d << ',' << r.c.enrichments << ',' << r.c.constrained << ',' << r.c.smallest_fraction << ','
           << r.c.plain << ',' << r.c.jacobi << ',' << r.c.koschier << ',' << r.c.plain_constrained << ',' << r.c.koschier_constrained
-          << '\n';
+          << ',' << r.c.part_jacobi << ',' << r.c.part_jacobi_constrained << '\n';
 
     const cs::Row& uncut = rows.front();
     std::printf("uncut cube: kappa = %.4g, Jacobi-scaled %.4g\n", uncut.c.plain, uncut.c.jacobi);
+    double part_largest = 0.0;
+    for (const cs::Row& r : rows)
+      if (r.d >= 1e-10) part_largest = std::max(part_largest, r.c.part_jacobi_constrained);
+    std::printf("part basis and Jacobi, eq. 22: largest kappa over every cut with d >= 1e-10: %.4g\n", part_largest);
     for (const cs::Row& r : rows)
       if (r.x_c == 0.0)
         std::printf("cut at x_c = 0 (%d enrichments): kappa = %.4g (%.3g x the uncut), Jacobi %.4g, Koschier %.4g\n", r.c.enrichments,
                     r.c.plain, r.c.plain / uncut.c.plain, r.c.jacobi, r.c.koschier);
-    std::printf("%10s %9s %4s %11s %11s %11s %11s %11s %11s\n", "x_c", "d", "con", "min v", "plain", "jacobi", "koschier", "plain+c",
-                "kosch+c");
+    std::printf("%10s %9s %4s %11s %11s %11s %11s %11s %11s %11s\n", "x_c", "d", "con", "min v", "plain", "jacobi", "koschier", "plain+c",
+                "kosch+c", "part+c");
     for (const cs::Row& r : rows)
       if (r.d < 0.99e-2 || r.x_c == 0.0)
-        std::printf("%10.6g %9.2e %4d %11.3e %11.4e %11.4e %11.4e %11.4e %11.4e\n", r.x_c, r.d, r.c.constrained, r.c.smallest_fraction,
-                    r.c.plain, r.c.jacobi, r.c.koschier, r.c.plain_constrained, r.c.koschier_constrained);
+        std::printf("%10.6g %9.2e %4d %11.3e %11.4e %11.4e %11.4e %11.4e %11.4e %11.4e\n", r.x_c, r.d, r.c.constrained,
+                    r.c.smallest_fraction, r.c.plain, r.c.jacobi, r.c.koschier, r.c.plain_constrained, r.c.koschier_constrained,
+                    r.c.part_jacobi_constrained);
 
     // The fit ranges: the bare and the scaled matrices from d = 1e-2, where the slivers begin to
     // rule, to 1e-4, below which the bare matrix is numerically singular and the slivers' own
@@ -170,7 +177,9 @@ int main(int argc, char** argv) {
                                 {"jacobi", &C::jacobi, 1e-4, 1e-2},
                                 {"koschier", &C::koschier, 1e-4, 1e-2},
                                 {"plain_constrained", &C::plain_constrained, 1e-8, 1e-3},
-                                {"koschier_constrained", &C::koschier_constrained, 1e-8, 1e-3}};
+                                {"koschier_constrained", &C::koschier_constrained, 1e-8, 1e-3},
+                                {"part_jacobi", &C::part_jacobi, 1e-4, 1e-2},
+                                {"part_jacobi_constrained", &C::part_jacobi_constrained, 1e-8, 1e-3}};
     for (const int side : {-1, 1})
       for (const Fit& fit : fits) {
         const double p = cs::growth_exponent(rows, side, fit.kappa, fit.lo, fit.hi);

@@ -4,6 +4,7 @@
 # the uncut cube's as a line;
 # conditioning_growth.png: the same against the distance d of the cut from the face it nears
 # (log-log, the cut nearing x = -1), with the slopes d^-3 and d^-1 the test asserts.
+# Both also show Kerf's addition: the part basis (dynamics/part_basis.hpp) with Jacobi scaling.
 # A condition number beyond 1e16 (or infinite: a non-positive computed eigenvalue) is drawn at 1e16:
 # the matrix is numerically singular there.
 set terminal pngcairo size 1100,700 enhanced font "DejaVu Sans,11" linewidth 1.5
@@ -14,11 +15,14 @@ cap(k) = (k > 1e16 || k != k) ? 1e16 : k
 cut(c) = (column(1) == column(1)) ? column(c) : NaN   # rows of a cut (the uncut row has x_c = NaN)
 stats "conditioning_sweep.csv" every ::1::1 using 6 nooutput
 uncut = STATS_min
+stats "conditioning_sweep.csv" every ::1::1 using 7 nooutput
+uncut_jacobi = STATS_min
 set style line 1 lc rgb "#d62728" pt 7 ps 0.8 lw 1.5    # bare
 set style line 2 lc rgb "#1f77b4" pt 5 ps 0.8 lw 1.5    # Jacobi
 set style line 3 lc rgb "#2ca02c" pt 9 ps 0.9 lw 1.5    # Koschier
 set style line 4 lc rgb "#ff7f0e" pt 6 ps 1.0 lw 1.0    # bare + eq. 22
 set style line 5 lc rgb "#9467bd" pt 4 ps 1.2 lw 1.0    # Koschier + eq. 22
+set style line 6 lc rgb "#17becf" pt 13 ps 0.9 lw 1.5   # part basis + Jacobi + eq. 22
 set format y "10^{%L}"
 set logscale y
 set yrange [1:3e16]
@@ -34,7 +38,8 @@ plot "conditioning_sweep.csv" using (cut(1)):(cap(cut(6))) w lp ls 1 t "bare", \
      "" using (cut(1)):(cap(cut(8))) w lp ls 3 t "Koschier eqs. 23-27", \
      "" using (cut(1)):(cap(cut(9))) w p ls 4 t "bare, eq. 22 ({/Symbol e} = 10^{-9})", \
      "" using (cut(1)):(cap(cut(10))) w p ls 5 t "Koschier eqs. 23-27 and eq. 22", \
-     uncut w l lc rgb "#555555" dt 2 t sprintf("uncut cube (%.1f)", uncut)
+     "" using (cut(1)):(cap(cut(12))) w lp ls 6 t "part basis + Jacobi, eq. 22 (Kerf)", \
+     uncut w l lc rgb "#555555" dt 2 t sprintf("uncut cube (%.1f; Jacobi-scaled %.2f)", uncut, uncut_jacobi)
 
 set output "conditioning_growth.png"
 set title "The cut x = -1 + d nearing the face x = -1"
@@ -50,5 +55,6 @@ plot "conditioning_sweep.csv" using (left(2)):(cap(left(6))) w lp ls 1 t "bare",
      "" using (left(2)):(cap(left(8))) w lp ls 3 t "Koschier eqs. 23-27", \
      "" using (left(2)):(cap(left(9))) w lp ls 4 t "bare, eq. 22", \
      "" using (left(2)):(cap(left(10))) w lp ls 5 t "Koschier and eq. 22", \
+     "" using (left(2)):(cap(left(12))) w lp ls 6 t "part basis + Jacobi, eq. 22", \
      (x < 1e-1 && x > 3e-5 ? 6100.0 / (0.125 * x**3) : NaN) w l lc rgb "#d62728" dt 2 lw 2 t "6100 / v_{min}, v_{min} = d^3 / 8", \
      (x < 1e-2 ? 24.0 / x : NaN) w l lc rgb "#2ca02c" dt 2 lw 2 t "24 / d"

@@ -1,5 +1,5 @@
 /// @file newton_matrix_conditioning.hpp
-/// @brief The 2-norm condition number of the implicit step's matrix A = M + dt^2 K of a cut body, bare, Jacobi-scaled, with Koschier's preconditioner, and with his constraining too (Paper 002 section 6, Fig. 14).
+/// @brief The 2-norm condition number of the implicit step's matrix A = M + dt^2 K of a cut body, bare, Jacobi-scaled, with Koschier's preconditioner, with his constraining too (Paper 002 section 6, Fig. 14), and in the part basis.
 #pragma once
 
 #include "kerf/xfem/cut_xfem_model.hpp"
@@ -25,12 +25,15 @@ struct NewtonMatrixConditioning {
   double koschier = 0.0;            ///< kappa(T A T), T of eqs. 26-27
   double plain_constrained = 0.0;   ///< kappa(A) after eq. 22 constrains v < epsilon
   double koschier_constrained = 0.0; ///< eq. 22 and eqs. 26-27 together, Koschier's three steps (but the perturbation)
+  double part_jacobi = 0.0;         ///< kappa(S^T A S), S = P T: the part basis (part_basis.hpp), then Jacobi;
+                                    ///< infinity when a part is below round-off of P^T A P's diagonal
+  double part_jacobi_constrained = 0.0; ///< the same after eq. 22
   double smallest_fraction = 0.0;   ///< the smallest v = V_enr / V_supp of any enrichment (1 if none)
   int enrichments = 0;              ///< enrichments of the body
   int constrained = 0;              ///< enrichments eq. 22 constrains
 };
 
-/// Assembles A = M + dt^2 K of `model` and measures the five condition numbers.
+/// Assembles A = M + dt^2 K of `model` and measures the seven condition numbers.
 /// @param density   rho (kg/m^3) for the mass
 /// @param dt        the time step (s)
 /// @param mass_rule a piece rule exact for degree 2 (Tet4) or 4 (Tet10), for the mass
