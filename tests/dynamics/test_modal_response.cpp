@@ -7,7 +7,7 @@
 //   eigenvalues lambda = (1 + h mu / 2) / (1 - h mu / 2), mu = the mode's continuous eigenvalues,
 //   have |lambda| = 1 undamped and the phase 2 atan(omega dt / 2) per step: the beam released
 //   under suddenly applied gravity has q_1(t_n) = q_s (1 - cos(n theta)), theta = 2 atan(omega dt / 2),
-//   so the period grows by T_num / T = omega dt / (2 atan(omega dt / 2)) (Hughes 2000, section 9.1.4);
+//   so the period grows by T_num / T = omega dt / (2 atan(omega dt / 2)) (Hughes 2000, section 9.1);
 // - with Rayleigh damping q_n = c_1 lambda_1^n + c_2 lambda_2^n, mu = -xi omega +- i omega sqrt(1 - xi^2);
 // - backward Euler, lambda = 1 / (1 - h mu): an undamped mode loses the fraction
 //   1 - 1 / (1 + omega^2 dt^2) of its energy every step.
