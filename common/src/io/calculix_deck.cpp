@@ -90,6 +90,10 @@ void write_calculix_deck(const std::filesystem::path& inp, const TetMesh& mesh, 
     throw std::invalid_argument("write_calculix_deck: NLGEOM needs 0 < min <= initial <= max <= 1 increments");
   if (matrices && !(job.material.density > 0.0))
     throw std::invalid_argument("write_calculix_deck: the matrix route needs a positive density (M g)");
+  const bool frequency = job.procedure == CalculixProcedure::frequency;
+  if (frequency && (!(job.material.density > 0.0) || job.frequencies < 1 || job.nlgeom || job.gravity.norm() > 0.0 ||
+                    job.nodal_loads.size() != 0 || !job.face_pressures.empty()))
+    throw std::invalid_argument("write_calculix_deck: the frequency route needs a positive density, frequencies >= 1 and no loads");
 
   std::ofstream out(inp);
   if (!out) throw std::runtime_error("write_calculix_deck: cannot write " + inp.string());
@@ -126,6 +130,8 @@ void write_calculix_deck(const std::filesystem::path& inp, const TetMesh& mesh, 
     std::ostringstream increments;
     increments << job.initial_increment << ", 1, " << job.min_increment << ", " << job.max_increment;
     out << "*STEP, NLGEOM, INC=" << job.max_increments << "\n*STATIC\n" << increments.str() << "\n";
+  } else if (frequency) {
+    out << "*STEP\n*FREQUENCY\n" << job.frequencies << "\n";
   } else {
     out << "*STEP\n*STATIC\n";
   }
@@ -136,6 +142,11 @@ void write_calculix_deck(const std::filesystem::path& inp, const TetMesh& mesh, 
     if (!any) out << "*BOUNDARY\n";
     any = true;
     out << d / 3 + 1 << ", " << d % 3 + 1 << ", " << d % 3 + 1 << ", " << exact(dofs.prescribed[d]) << "\n";
+  }
+  if (frequency) {
+    out << "*END STEP\n"; // the eigenvalues go to the .dat without a print request
+    if (!out) throw std::runtime_error("write_calculix_deck: error while writing " + inp.string());
+    return;
   }
   const double g = job.gravity.norm();
   if (g > 0.0) {
@@ -219,6 +230,33 @@ Eigen::MatrixXd read_calculix_displacements(const std::filesystem::path& dat, Ei
   }
   if (u.size() == 0) throw std::runtime_error("read_calculix_displacements: no displacement block in " + dat.string());
   return u;
+}
+
+std::vector<double> read_calculix_eigenvalues(const std::filesystem::path& dat) {
+  std::ifstream in(dat);
+  if (!in) throw std::runtime_error("read_calculix_eigenvalues: cannot open " + dat.string());
+  std::vector<double> eigenvalues;
+  bool in_block = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.find("E I G E N V A L U E   O U T P U T") != std::string::npos) {
+      eigenvalues.clear(); // a later step overwrites an earlier one
+      in_block = true;
+      continue;
+    }
+    if (!in_block) continue;
+    // Rows "mode eigenvalue omega frequency imaginary"; the header lines do not parse as such,
+    // and the next block's title ends this one.
+    if (line.find("P A R T I C I P A T I O N") != std::string::npos || line.find("E F F E C T I V E") != std::string::npos) break;
+    std::istringstream fields(line);
+    int mode = 0;
+    std::string value;
+    if (!(fields >> mode >> value)) continue;
+    if (mode != static_cast<int>(eigenvalues.size()) + 1)
+      throw std::runtime_error("read_calculix_eigenvalues: mode " + std::to_string(mode) + " out of order in " + dat.string());
+    eigenvalues.push_back(parse_fortran_double(value));
+  }
+  if (eigenvalues.empty()) throw std::runtime_error("read_calculix_eigenvalues: no eigenvalue block in " + dat.string());
+  return eigenvalues;
 }
 
 CalculixMatrices read_calculix_matrices(const std::filesystem::path& job_base, Eigen::Index num_nodes) {

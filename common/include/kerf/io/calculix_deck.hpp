@@ -31,6 +31,7 @@ namespace kerf {
 enum class CalculixProcedure {
   static_solve,   ///< *STATIC with *DLOAD GRAV and *CLOAD; U printed to jobname.dat (7 digits)
   matrix_storage, ///< *FREQUENCY, SOLVER=MATRIXSTORAGE: K, M and the DOF list to .sti/.mas/.dof
+  frequency,      ///< *FREQUENCY with *BOUNDARY: the lowest `frequencies` eigenvalues to jobname.dat (ARPACK, 7 digits)
 };
 
 /// A uniform pressure on one face of one tet: ccx's *DLOAD "Pn", which ccx integrates itself.
@@ -52,6 +53,7 @@ struct CalculixJob {
   /// nodal loads, so a traction must be given there as nodal_loads.
   std::vector<FacePressure> face_pressures;
   CalculixProcedure procedure = CalculixProcedure::static_solve; ///< which deck to write
+  int frequencies = 10; ///< frequency route: how many of the lowest eigenvalues ccx computes (needs rho > 0, no loads)
 
   /// Static route only: a geometrically nonlinear step (*STEP, NLGEOM). ccx then reads
   /// *ELASTIC as a St. Venant-Kirchhoff material (Green-Lagrange strain, second Piola-Kirchhoff
@@ -91,6 +93,11 @@ double run_calculix(const std::string& ccx, const std::filesystem::path& workdir
 /// @return #V by 3 displacements (7 significant digits); nodes ccx did not print stay 0
 /// @throws std::runtime_error if the file or the block is missing or a node is out of range
 Eigen::MatrixXd read_calculix_displacements(const std::filesystem::path& dat, Eigen::Index num_nodes);
+
+/// Reads the "E I G E N V A L U E   O U T P U T" block of a ccx .dat file (*FREQUENCY): the
+/// eigenvalues omega^2 (1/s^2 in SI units), mode 1 first, with ccx's 7 significant digits.
+/// @throws std::runtime_error if the file or the block is missing
+std::vector<double> read_calculix_eigenvalues(const std::filesystem::path& dat);
 
 /// CalculiX's assembled matrices over the DOFs of its equations (all of them when the deck has
 /// no *BOUNDARY), as written by the matrix-storage route.
