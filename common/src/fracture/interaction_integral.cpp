@@ -124,10 +124,10 @@ Eigen::Vector3d interaction_integrand(const InteractionDomain& domain, const Lin
   const Eigen::Matrix3d strain = 0.5 * (grad_u + grad_u.transpose());
   const Eigen::Matrix3d stress = material.lambda() * strain.trace() * Eigen::Matrix3d::Identity() + 2.0 * material.mu() * strain;
   const Eigen::Vector3d du_da = grad_u * a;
-  const StressIntensityFactors unit_modes[3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+  const WilliamsUnitFields auxiliary = williams_unit_fields(domain.front, material, x);
   for (int mode = 0; mode < 3; ++mode) {
-    const Eigen::Matrix3d grad_u2 = williams_displacement_gradient(domain.front, unit_modes[mode], material, x);
-    const Eigen::Matrix3d stress2 = williams_stress(domain.front, unit_modes[mode], material, x);
+    const Eigen::Matrix3d& grad_u2 = auxiliary.gradient[static_cast<std::size_t>(mode)];
+    const Eigen::Matrix3d& stress2 = auxiliary.stress[static_cast<std::size_t>(mode)];
     // W12 = sigma : eps2 = sigma : grad u2 (sigma is symmetric).
     const double W12 = (stress.array() * grad_u2.array()).sum();
     // P_j = sigma_ij du2_i/dx_a + sigma2_ij du_i/dx_a - W12 delta_aj, the integrand of Moës et al.'s domain form.

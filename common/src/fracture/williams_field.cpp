@@ -51,6 +51,38 @@ FrontPolar polar_off_front(const StraightFrontFrame& front, const Eigen::Vector3
   return p;
 }
 
+/// The gradient in the frame, H_local(i, j) = du_i/dx_j with j in (a, b, c), of the field with
+/// mode scales C at p: d/dx_a = cos(theta) d/dr - sin(theta)/r d/dtheta and
+/// d/dx_b = sin(theta) d/dr + cos(theta)/r d/dtheta applied to sqrt(r) f(theta); d/dx_c = 0.
+Eigen::Matrix3d local_gradient(const FrontPolar& p, const ModeFactors& m, const Eigen::Vector3d& C) {
+  const double st = std::sin(p.theta), ct = std::cos(p.theta), inv_sqrt_r = 1.0 / std::sqrt(p.r);
+  const auto d_da = [&](const Angular& g) { return inv_sqrt_r * (0.5 * ct * g.f - st * g.df); };
+  const auto d_db = [&](const Angular& g) { return inv_sqrt_r * (0.5 * st * g.f + ct * g.df); };
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 2; ++i) {
+    H(i, 0) = C[0] * d_da(m.mode_I[i]) + C[1] * d_da(m.mode_II[i]);
+    H(i, 1) = C[0] * d_db(m.mode_I[i]) + C[1] * d_db(m.mode_II[i]);
+  }
+  H(2, 0) = C[2] * d_da(m.mode_III);
+  H(2, 1) = C[2] * d_db(m.mode_III);
+  return H;
+}
+
+/// The stress in the frame at p, from the textbook's table (see the header).
+Eigen::Matrix3d local_stress(const FrontPolar& p, const StressIntensityFactors& K, double nu) {
+  const double t = p.theta, scale = 1.0 / std::sqrt(2.0 * std::numbers::pi * p.r);
+  const double s = std::sin(t / 2), c = std::cos(t / 2), s3 = std::sin(1.5 * t), c3 = std::cos(1.5 * t);
+  const double sI = scale * K.K_I, sII = scale * K.K_II, sIII = scale * K.K_III;
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  S(0, 0) = sI * c * (1 - s * s3) - sII * s * (2 + c * c3);
+  S(1, 1) = sI * c * (1 + s * s3) + sII * s * c * c3;
+  S(0, 1) = S(1, 0) = sI * c * s * c3 + sII * c * (1 - s * s3);
+  S(2, 2) = nu * (S(0, 0) + S(1, 1));
+  S(0, 2) = S(2, 0) = -sIII * s;
+  S(1, 2) = S(2, 1) = sIII * c;
+  return S;
+}
+
 } // namespace
 
 StraightFrontFrame make_straight_front_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& ahead, const Eigen::Vector3d& normal) {
@@ -87,37 +119,27 @@ Eigen::Vector3d williams_displacement(const StraightFrontFrame& front, const Str
 Eigen::Matrix3d williams_displacement_gradient(const StraightFrontFrame& front, const StressIntensityFactors& K,
                                                const LinearMaterial& material, const Eigen::Vector3d& x) {
   const FrontPolar p = polar_off_front(front, x, "displacement_gradient");
-  const ModeFactors m = mode_factors(p.theta, kappa_plane_strain(material));
-  const Eigen::Vector3d C = mode_scales(K, material);
-  const double st = std::sin(p.theta), ct = std::cos(p.theta), inv_sqrt_r = 1.0 / std::sqrt(p.r);
-  // d/dx_a = cos(theta) d/dr - sin(theta)/r d/dtheta and d/dx_b = sin(theta) d/dr + cos(theta)/r d/dtheta
-  // applied to sqrt(r) f(theta).
-  const auto d_da = [&](const Angular& g) { return inv_sqrt_r * (0.5 * ct * g.f - st * g.df); };
-  const auto d_db = [&](const Angular& g) { return inv_sqrt_r * (0.5 * st * g.f + ct * g.df); };
-  Eigen::Matrix3d H_local = Eigen::Matrix3d::Zero();
-  for (int i = 0; i < 2; ++i) {
-    H_local(i, 0) = C[0] * d_da(m.mode_I[i]) + C[1] * d_da(m.mode_II[i]);
-    H_local(i, 1) = C[0] * d_db(m.mode_I[i]) + C[1] * d_db(m.mode_II[i]);
-  }
-  H_local(2, 0) = C[2] * d_da(m.mode_III);
-  H_local(2, 1) = C[2] * d_db(m.mode_III);
-  return front.R * H_local * front.R.transpose();
+  return front.R * local_gradient(p, mode_factors(p.theta, kappa_plane_strain(material)), mode_scales(K, material)) * front.R.transpose();
 }
 
 Eigen::Matrix3d williams_stress(const StraightFrontFrame& front, const StressIntensityFactors& K, const LinearMaterial& material,
                                 const Eigen::Vector3d& x) {
   const FrontPolar p = polar_off_front(front, x, "stress");
-  const double t = p.theta, scale = 1.0 / std::sqrt(2.0 * std::numbers::pi * p.r);
-  const double s = std::sin(t / 2), c = std::cos(t / 2), s3 = std::sin(1.5 * t), c3 = std::cos(1.5 * t);
-  const double sI = scale * K.K_I, sII = scale * K.K_II, sIII = scale * K.K_III;
-  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
-  S(0, 0) = sI * c * (1 - s * s3) - sII * s * (2 + c * c3);
-  S(1, 1) = sI * c * (1 + s * s3) + sII * s * c * c3;
-  S(0, 1) = S(1, 0) = sI * c * s * c3 + sII * c * (1 - s * s3);
-  S(2, 2) = material.poisson * (S(0, 0) + S(1, 1));
-  S(0, 2) = S(2, 0) = -sIII * s;
-  S(1, 2) = S(2, 1) = sIII * c;
-  return front.R * S * front.R.transpose();
+  return front.R * local_stress(p, K, material.poisson) * front.R.transpose();
+}
+
+WilliamsUnitFields williams_unit_fields(const StraightFrontFrame& front, const LinearMaterial& material, const Eigen::Vector3d& x) {
+  const FrontPolar p = polar_off_front(front, x, "unit_fields");
+  const ModeFactors m = mode_factors(p.theta, kappa_plane_strain(material));
+  const double unit = 1.0 / (2.0 * material.mu() * std::sqrt(2.0 * std::numbers::pi));
+  WilliamsUnitFields fields;
+  for (int mode = 0; mode < 3; ++mode) {
+    StressIntensityFactors K;
+    (mode == 0 ? K.K_I : mode == 1 ? K.K_II : K.K_III) = 1.0;
+    fields.gradient[mode] = front.R * local_gradient(p, m, unit * Eigen::Vector3d::Unit(mode)) * front.R.transpose();
+    fields.stress[mode] = front.R * local_stress(p, K, material.poisson) * front.R.transpose();
+  }
+  return fields;
 }
 
 Eigen::MatrixXd williams_displacements_at(const StraightFrontFrame& front, const StressIntensityFactors& K, const LinearMaterial& material,

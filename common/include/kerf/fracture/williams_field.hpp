@@ -21,6 +21,7 @@
 #include "kerf/fem/linear_material.hpp"
 
 #include <Eigen/Core>
+#include <array>
 #include <filesystem>
 
 namespace kerf {
@@ -75,6 +76,14 @@ Eigen::Matrix3d williams_displacement_gradient(const StraightFrontFrame& front, 
 /// and s_cc = nu (s_aa + s_bb) (plane strain). Throws std::invalid_argument on the front.
 Eigen::Matrix3d williams_stress(const StraightFrontFrame& front, const StressIntensityFactors& K, const LinearMaterial& material,
                                 const Eigen::Vector3d& x);
+
+/// The gradients and stresses of the three unit fields (K_I = 1, then K_II = 1, then K_III = 1)
+/// at x, from one evaluation of the angles: the auxiliary fields of the interaction integral.
+struct WilliamsUnitFields {
+  std::array<Eigen::Matrix3d, 3> gradient; ///< williams_displacement_gradient of each unit mode
+  std::array<Eigen::Matrix3d, 3> stress;   ///< williams_stress of each unit mode
+};
+WilliamsUnitFields williams_unit_fields(const StraightFrontFrame& front, const LinearMaterial& material, const Eigen::Vector3d& x);
 
 /// The displacement at each point (rows of `points`, #P by 3): #P by 3.
 Eigen::MatrixXd williams_displacements_at(const StraightFrontFrame& front, const StressIntensityFactors& K, const LinearMaterial& material,
