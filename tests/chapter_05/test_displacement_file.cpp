@@ -7,6 +7,7 @@
 
 #include "kerf/app/input_error.hpp"
 #include "kerf/fem/solve_linear_static.hpp"
+#include "kerf/fracture/williams_field.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/scene/scene.hpp"
@@ -222,4 +223,32 @@ TEST_CASE("chapter 4's program prescribes a uniaxial field by file on the whole 
     // Round-off of the solve, relative to the largest displacement (eps * 0.2 m * nu = 7e-5 m).
     CHECK((computed - exact).norm() <= 1e-11 * 7e-5);
   }
+}
+
+TEST_CASE("Williams's field written at a slab's nodes is what a scene prescribes on the slab's whole boundary") {
+  // The validation scene's path: write_williams_displacement_file at the mesh's nodes, one entry
+  // per face reading the file, and every boundary node gets the field's value, bit for bit (the
+  // file holds 17 digits), the interior nodes nothing.
+  const auto dir = kerf_test::fresh_dir("displacement_file_williams");
+  const Eigen::Vector3d min(-0.01, -0.01, 0.0), max(0.01, 0.01, 0.005);
+  const kerf::TetMesh mesh = kerf::tet10_from_tet4(kerf::make_box_mesh(min, max, Eigen::Vector3i(4, 4, 2)));
+  const kerf::StraightFrontFrame front = kerf::make_straight_front_frame({0.0013, 0.0007, 0.0}, {1, 0, 0}, {0, 1, 0});
+  const kerf::LinearMaterial material{300e3, 0.35, 1070};
+  const kerf::StressIntensityFactors K{1.0, 0.3, 0.0};
+  kerf::write_williams_displacement_file(dir / "williams.csv", front, K, material, mesh.nodes);
+  kerf_test::write_text(dir / "slab.json", R"({"mesh": {"box": {"min": [-0.01, -0.01, 0], "max": [0.01, 0.01, 0.005], "cells": [4, 4, 2]}, "order": 2},
+      "dirichlet": [)" + whole_boundary_from(min, max, "williams.csv") + "]}");
+  const kerf::Scene scene = kerf::read_scene_file(dir / "slab.json");
+  const kerf::TetMesh scene_mesh = kerf::make_scene_mesh(scene, nullptr);
+  REQUIRE(scene_mesh.nodes == mesh.nodes);
+  const kerf::DofMap dofs = kerf::scene_dof_map(scene, scene_mesh, nullptr);
+  int boundary = 0;
+  for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v) {
+    const Eigen::Vector3d x = mesh.nodes.row(v).transpose();
+    const bool on_boundary = (x - min).minCoeff() < 1e-12 || (max - x).minCoeff() < 1e-12;
+    boundary += on_boundary;
+    CHECK((dofs.free_index[static_cast<std::size_t>(3 * v)] < 0) == on_boundary);
+    if (on_boundary) CHECK(dofs.prescribed.segment<3>(3 * v) == kerf::williams_displacement(front, K, material, x));
+  }
+  CHECK(dofs.num_free == 3 * (mesh.num_nodes() - boundary));
 }

@@ -1,9 +1,9 @@
 /// @file interaction_integral.hpp
 /// @brief Stress intensity factors of a displacement field by the interaction integral in domain form, along a straight front.
 ///
-/// The interaction integral of Moës, Dolbow and Belytschko (1999, section 5; after Shih and
-/// Asaro 1988) superposes the field to measure (sigma, grad u) and an auxiliary Williams field
-/// (sigma2, grad u2) of one mode with unit K (williams_field.hpp). In the front frame (a ahead,
+/// The interaction integral of Moës, Dolbow and Belytschko (1999; after Shih and Asaro 1988)
+/// superposes the field to measure (sigma, grad u) and an auxiliary Williams field (sigma2,
+/// grad u2) of one mode with unit K (williams_field.hpp). In the front frame (a ahead,
 /// b the cut normal, c along the front) and in its domain form with a weight q,
 ///     I = int_V ( sigma_ij du2_i/dx_a + sigma2_ij du_i/dx_a - W12 delta_aj ) dq/dx_j dV,
 ///     W12 = sigma_ij eps2_ij,
@@ -20,7 +20,11 @@
 /// segment but for a ramp of length `end_ramp` at each end, where it falls to 0 by the same
 /// step. Between the front and inner_radius q is flat across the front, so the integrand there
 /// is zero (but for w's ramps): the elements next to the front, where a discrete field is worst,
-/// do not enter, and no quadrature point meets the singularity.
+/// do not enter, and no quadrature point meets the singularity. In w's ramps the term
+/// (sigma_ic du2_i/dx_a + sigma2_ic du_i/dx_a) dq/dx_c does reach the front, where it grows like
+/// 1/r for a field with shear content; the Gauss rules integrate it with an O(h) error, which
+/// shows as cross-talk into K_III (and into K_II for a mode-III field): 1e-3 of K on the tests'
+/// finest mesh (figures/05_crack_tip/validation_tools.md).
 ///
 /// The field comes in through a callback that gives du_i/dx_j at a point of a tet, so any field
 /// works: the FE field of a mesh, an XFEM field (the callback decides the side of the cut from
