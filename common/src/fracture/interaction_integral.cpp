@@ -4,8 +4,10 @@
 #include "kerf/fem/tet_quadrature.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/mesh/node_region.hpp"
-#include "kerf/quadrature/polyhedron_moments.hpp"
 
+#include <Eigen/LU>
+
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -42,6 +44,42 @@ bool weight_may_vary(const InteractionDomain& domain, const BoundingSphere& sphe
   const bool inside_plateau = r + s <= domain.inner_radius && y[2] - s >= domain.front_begin + domain.end_ramp &&
                               y[2] + s <= domain.front_end - domain.end_ramp;
   return !inside_plateau;
+}
+
+/// The tet T split into its eight children by its edges' midpoints (Bey's red refinement: four
+/// corner tets and the inner octahedron cut along its diagonal m02-m13), each 1/8 of T.
+std::array<Eigen::Matrix<double, 4, 3>, 8> red_children(const Eigen::Matrix<double, 4, 3>& T) {
+  const auto m = [&](int i, int j) -> Eigen::RowVector3d { return 0.5 * (T.row(i) + T.row(j)); };
+  const Eigen::RowVector3d m01 = m(0, 1), m02 = m(0, 2), m03 = m(0, 3), m12 = m(1, 2), m13 = m(1, 3), m23 = m(2, 3);
+  std::array<Eigen::Matrix<double, 4, 3>, 8> children;
+  children[0] << T.row(0), m01, m02, m03;
+  children[1] << m01, T.row(1), m12, m13;
+  children[2] << m02, m12, T.row(2), m23;
+  children[3] << m03, m13, m23, T.row(3);
+  children[4] << m02, m13, m01, m12;
+  children[5] << m02, m13, m12, m23;
+  children[6] << m02, m13, m23, m03;
+  children[7] << m02, m13, m03, m01;
+  return children;
+}
+
+/// Calls integrate(T) on T or, when T may hold the front where w's ramps make q vary along it
+/// (the one place where the integrand reaches the front's 1/r), on T's red children, down to
+/// `levels` times: the children away from the front take Gauss rules that suit them, and the
+/// error of the few along it shrinks with their size.
+template <class Integrate>
+void refine_towards_front(const InteractionDomain& domain, const Eigen::Matrix<double, 4, 3>& T, int levels, const Integrate& integrate) {
+  const BoundingSphere sphere = bounding_sphere(T);
+  const Eigen::Vector3d y = domain.front.local(sphere.center);
+  const double s = sphere.radius;
+  const bool near_front = std::hypot(y[0], y[1]) <= s;
+  const bool in_ramp = (y[2] - s < domain.front_begin + domain.end_ramp && y[2] + s > domain.front_begin) ||
+                       (y[2] + s > domain.front_end - domain.end_ramp && y[2] - s < domain.front_end);
+  if (levels <= 0 || !near_front || !in_ramp) {
+    integrate(T);
+    return;
+  }
+  for (const Eigen::Matrix<double, 4, 3>& child : red_children(T)) refine_towards_front(domain, child, levels - 1, integrate);
 }
 
 /// The domain form drops the integral over the domain's boundary, which is right only if q = 0
@@ -82,6 +120,7 @@ void InteractionDomain::check() const {
   if (!(inner_radius >= 0.0)) fail("inner_radius must be >= 0");
   if (!(outer_radius > inner_radius)) fail("outer_radius must exceed inner_radius");
   if (quadrature_degree < 1 || quadrature_degree > 15) fail("quadrature_degree must be in [1, 15]");
+  if (front_refinement_levels < 0 || front_refinement_levels > 6) fail("front_refinement_levels must be in [0, 6]");
 }
 
 double InteractionDomain::weight(const Eigen::Vector3d& x, Eigen::Vector3d& gradient) const {
@@ -154,25 +193,40 @@ StressIntensityFactors interaction_integral_sifs(const TetMesh& mesh, const Disp
   const Eigen::Vector3d b = domain.front.R.col(1);
   const Plane cut_plane{b, b.dot(domain.front.origin)};
   const auto side = [&](const Eigen::Vector3d& x) { return cut_plane.evaluate(x); };
+  const Eigen::Vector3d c = domain.front.R.col(2);
+  const double c0 = c.dot(domain.front.origin);
+  std::vector<Plane> w_breaks;
+  for (const double at : {domain.front_begin, domain.front_begin + domain.end_ramp, domain.front_end - domain.end_ramp, domain.front_end})
+    w_breaks.push_back(Plane{c, c0 + at});
   Eigen::Vector3d integrals = Eigen::Vector3d::Zero();
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
     if (!weight_may_vary(domain, bounding_sphere(X))) continue;
-    // The two sides of the cut's plane apart: behind the front the field jumps across it.
+    // The two sides of the cut's plane apart: behind the front the field jumps across it. And
+    // the tet cut by the planes x_c = const where w changes its formula (the segment's ends and
+    // the ramps' inner ends), so that w is one polynomial on each cell: a Gauss rule across
+    // w's jump in curvature would err by O(h^2) there, next to the front's 1/r.
     std::vector<ConvexCell> cells{tet_cell(X)};
     split_cell(cells, 0, side, cut_plane, FaceOrigin{FaceOrigin::Kind::cut_plane, 0});
-    for (const ConvexCell& cell : cells)
-      for (const Eigen::Matrix<double, 4, 3>& T : convex_cell_tetrahedra(cell)) {
-        const ReferenceMap map(T);
-        if (map.det == 0.0) continue; // a fan's flat tet holds no volume
-        for (std::size_t q = 0; q < rule.points.size(); ++q) {
-          const Eigen::Vector3d x = map.to_physical(rule.points[q]);
-          Eigen::Vector3d grad_q;
-          domain.weight(x, grad_q);
-          if (grad_q.isZero(0.0)) continue; // no integrand, and no need to ask the field
-          integrals += rule.weights[q] * std::abs(map.det) * interaction_integrand(domain, material, x, grad_u(t, x));
-        }
+    for (const Plane& plane : w_breaks)
+      for (int c = static_cast<int>(cells.size()) - 1; c >= 0; --c)
+        split_cell(cells, c, [&](const Eigen::Vector3d& x) { return plane.evaluate(x); }, plane, FaceOrigin{FaceOrigin::Kind::cut_plane, 1});
+    const auto integrate = [&](const Eigen::Matrix<double, 4, 3>& T) {
+      // x = T0 + J xi, dV = |det J| dxi; a fan's flat tet holds no volume.
+      Eigen::Matrix3d J;
+      for (int i = 0; i < 3; ++i) J.col(i) = (T.row(i + 1) - T.row(0)).transpose();
+      const double volume_factor = std::abs(J.determinant());
+      if (volume_factor == 0.0) return;
+      for (std::size_t q = 0; q < rule.points.size(); ++q) {
+        const Eigen::Vector3d x = T.row(0).transpose() + J * rule.points[q];
+        Eigen::Vector3d grad_q;
+        domain.weight(x, grad_q);
+        if (grad_q.isZero(0.0)) continue; // no integrand, and no need to ask the field
+        integrals += rule.weights[q] * volume_factor * interaction_integrand(domain, material, x, grad_u(t, x));
       }
+    };
+    for (const ConvexCell& cell : cells)
+      for (const Eigen::Matrix<double, 4, 3>& T : convex_cell_tetrahedra(cell)) refine_towards_front(domain, T, domain.front_refinement_levels, integrate);
   }
   return sifs_from_interaction_integrals(integrals, material, domain);
 }

@@ -52,6 +52,9 @@ struct InteractionDomain {
   double inner_radius = 0.1; ///< q_r = 1 within this distance of the front (m), >= 0
   double outer_radius = 0.2; ///< q_r = 0 beyond it (m), > inner_radius
   int quadrature_degree = 4; ///< of the Gauss rule on each tet or cell (tet_quadrature_rule)
+  /// How many times a cell that may hold the front within w's ramps is split into its 8
+  /// children (towards the front only) before the Gauss rule: the integrand grows like 1/r there.
+  int front_refinement_levels = 2;
 
   /// Throws std::invalid_argument naming the first field out of range.
   void check() const;
