@@ -22,16 +22,16 @@
 /// is zero (but for w's ramps): the elements next to the front, where a discrete field is worst,
 /// do not enter, and no quadrature point meets the singularity. In w's ramps the term
 /// (sigma_ic du2_i/dx_a + sigma2_ic du_i/dx_a) dq/dx_c does reach the front, where it grows like
-/// 1/r for a field with shear content; the Gauss rules integrate it with an O(h) error, which
-/// shows as cross-talk into K_III (and into K_II for a mode-III field): 1e-3 of K on the tests'
-/// finest mesh (figures/05_crack_tip/validation_tools.md).
+/// 1/r for a field with shear content: the cells that may hold the front there are refined
+/// towards it (`front_refinement_levels`), and every tet is cut by the planes x_c = const where
+/// w changes its formula, so that no Gauss rule straddles a jump of w's curvature.
 ///
 /// The field comes in through a callback that gives du_i/dx_j at a point of a tet, so any field
 /// works: the FE field of a mesh, an XFEM field (the callback decides the side of the cut from
-/// the point), or, in the tests, Williams's exact gradient. Each tet that meets the ring is
-/// integrated by a Gauss rule; a tet that the cut's plane (through the front, normal b) crosses
-/// is first split along it into two convex cells, integrated apart, so that no rule straddles
-/// the cut, where the field jumps.
+/// the point), or, in the tests, Williams's exact gradient. Each tet where q varies is
+/// integrated by a Gauss rule on convex cells: a tet that the cut's plane (through the front,
+/// normal b) crosses is first split along it, so that no rule straddles the cut, where the field
+/// jumps, and no quadrature point lies on the plane.
 #pragma once
 
 #include "kerf/fem/linear_material.hpp"
