@@ -16,11 +16,12 @@ namespace kerf {
 
 namespace {
 
-/// The smooth step g(s) = 1 - 3 s^2 + 2 s^3 from g(0) = 1 to g(1) = 0, with g'(0) = g'(1) = 0,
-/// and its derivative in `slope`. C1, so the integrand has no jump where q starts to fall.
+/// The smooth step g(s) = 1 - 10 s^3 + 15 s^4 - 6 s^5 from g(0) = 1 to g(1) = 0, with g' and g''
+/// zero at both ends, and its derivative in `slope`. C2, so the integrand has no jump, and no
+/// kink, where q starts or stops falling; its integral over [0, 1] is 1/2.
 double smooth_step(double s, double& slope) {
-  slope = -6.0 * s * (1.0 - s);
-  return 1.0 - 3.0 * s * s + 2.0 * s * s * s;
+  slope = -30.0 * s * s * (1.0 - s) * (1.0 - s);
+  return 1.0 - s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
 }
 
 /// A sphere around a set of points: enough to decide quickly that q is 0 (or flat) on all of them.

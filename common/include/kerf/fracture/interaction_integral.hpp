@@ -16,7 +16,8 @@
 /// with E' = E / (1 - nu^2) (plane strain) and L_q = int_front q ds.
 ///
 /// The weight is q(x) = q_r(r) w(x_c): q_r = 1 for r <= inner_radius, falling as the smooth step
-/// 1 - 3 s^2 + 2 s^3 (s from 0 to 1 across the ring) to 0 at outer_radius; w = 1 along the front
+/// 1 - 10 s^3 + 15 s^4 - 6 s^5 (s from 0 to 1 across the ring; C2, so a Gauss rule across the
+/// ring's edges errs only by what the third derivative's jump leaves) to 0 at outer_radius; w = 1 along the front
 /// segment but for a ramp of length `end_ramp` at each end, where it falls to 0 by the same
 /// step. Between the front and inner_radius q is flat across the front, so the integrand there
 /// is zero (but for w's ramps): the elements next to the front, where a discrete field is worst,
