@@ -38,7 +38,9 @@ struct DirichletSpec {
   bool from_file = false;                ///< "displacement_file" given (read with the scene)
   DisplacementFile file;                 ///< its rows, when from_file
 
-  /// The prescribed displacement of a node at reference position X.
+  /// The prescribed displacement of a node at reference position X, for an entry with a
+  /// displacement and a rotation; an entry from a file gives each node its row instead
+  /// (scene_dirichlet_nodes).
   Eigen::Vector3d displacement_at(const Eigen::Vector3d& X) const;
 };
 
