@@ -2,71 +2,17 @@
 
 #include "kerf/app/input_error.hpp"
 #include "kerf/fem/evaluate_displacement.hpp"
+#include "kerf/mesh/number_table_csv.hpp"
 #include "kerf/mesh/point_locator.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string>
-#include <vector>
 
 namespace kerf {
 
-namespace {
-
-std::string trim(const std::string& s) {
-  const auto begin = s.find_first_not_of(" \t\r");
-  if (begin == std::string::npos) return "";
-  const auto end = s.find_last_not_of(" \t\r");
-  return s.substr(begin, end - begin + 1);
-}
-
-} // namespace
-
-Eigen::MatrixXd read_probes_csv(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), "file", "cannot open the probe file");
-  std::string line;
-  int line_number = 0;
-  std::string header;
-  while (header.empty() && std::getline(in, line)) {
-    ++line_number;
-    header = trim(line);
-  }
-  std::string compact;
-  for (char c : header)
-    if (c != ' ' && c != '\t') compact += c;
-  if (compact != "x,y,z") throw InputError(file.string(), "line " + std::to_string(line_number), "expected the header x,y,z");
-  std::vector<Eigen::Vector3d> points;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (trim(line).empty()) continue;
-    std::stringstream row(line);
-    std::string cell;
-    Eigen::Vector3d x;
-    int count = 0;
-    while (std::getline(row, cell, ',')) {
-      cell = trim(cell);
-      std::size_t used = 0;
-      double value = 0.0;
-      try {
-        value = std::stod(cell, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != cell.size() || !std::isfinite(value) || count >= 3)
-        throw InputError(file.string(), "line " + std::to_string(line_number), "expected three finite numbers x,y,z");
-      x[count++] = value;
-    }
-    if (count != 3) throw InputError(file.string(), "line " + std::to_string(line_number), "expected three finite numbers x,y,z");
-    points.push_back(x);
-  }
-  Eigen::MatrixXd result(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t p = 0; p < points.size(); ++p) result.row(static_cast<Eigen::Index>(p)) = points[p].transpose();
-  return result;
-}
+Eigen::MatrixXd read_probes_csv(const std::filesystem::path& file) { return read_number_table_csv(file, "x,y,z", "probe file"); }
 
 void write_probes_csv(const std::filesystem::path& file, const Eigen::MatrixXd& points, const Eigen::MatrixXd& displacements) {
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());

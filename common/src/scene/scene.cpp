@@ -209,13 +209,26 @@ LinearMaterial read_material(const ObjectReader& r) {
   return material;
 }
 
-/// "dirichlet": regions with a displacement, and optionally a rotation about an axis.
-std::vector<DirichletSpec> read_dirichlet(const ObjectReader& r) {
+/// "dirichlet": regions with a displacement, and optionally a rotation about an axis, or with a
+/// displacement file (a path relative to the scene), read here so that a malformed file is
+/// reported before any mesh is made.
+std::vector<DirichletSpec> read_dirichlet(const ObjectReader& r, const std::filesystem::path& base) {
   return read_list<DirichletSpec>(r, "dirichlet", [&](const json& entry, const std::string& path) {
     ObjectReader d(entry, path, r.file());
-    d.allow_only({"region", "displacement", "rotation"});
+    d.allow_only({"region", "displacement", "rotation", "displacement_file"});
     DirichletSpec spec;
     spec.region = read_region(d.at("region"), path + ".region", r.file());
+    if (d.has("displacement_file")) {
+      if (d.has("displacement") || d.has("rotation"))
+        d.fail(d.field("displacement_file"), "expected either \"displacement_file\" or \"displacement\" and \"rotation\", not both");
+      const std::filesystem::path file = d.text("displacement_file", "");
+      if (file.empty()) d.fail(d.field("displacement_file"), "expected a non-empty path");
+      const std::filesystem::path resolved = file.is_absolute() ? file : base / file;
+      if (!std::filesystem::is_regular_file(resolved)) d.fail(d.field("displacement_file"), "no such file: " + resolved.string());
+      spec.from_file = true;
+      spec.file = read_displacement_file(resolved);
+      return spec;
+    }
     spec.displacement = d.vector<3>("displacement", Eigen::Vector3d::Zero());
     if (d.has("rotation")) {
       ObjectReader rotation(d.at("rotation"), path + ".rotation", r.file());
@@ -479,7 +492,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.model = r.text("model", "linear");
   if (scene.model != "linear" && scene.model != "corotational")
     r.fail("model", "expected \"linear\" or \"corotational\", got \"" + scene.model + "\"");
-  scene.dirichlet = read_dirichlet(r);
+  scene.dirichlet = read_dirichlet(r, base);
   scene.gravity = r.vector<3>("gravity", Eigen::Vector3d::Zero());
   scene.traction = read_tractions(r);
   scene.cuts = read_cuts(r, base);

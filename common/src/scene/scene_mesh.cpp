@@ -50,6 +50,12 @@ std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetM
   for (std::size_t i = 0; i < scene.dirichlet.size(); ++i) {
     const DirichletSpec& spec = scene.dirichlet[i];
     const std::vector<int> nodes = scene_region_nodes(scene, mesh, spec.region, "dirichlet[" + std::to_string(i) + "].region");
+    if (spec.from_file) {
+      const std::string entry = "dirichlet[" + std::to_string(i) + "] of " + scene.source.string();
+      const std::vector<Eigen::Vector3d> values = displacements_from_file(spec.file, mesh, nodes, entry);
+      for (std::size_t k = 0; k < nodes.size(); ++k) conditions.push_back({{nodes[k]}, lambda * values[k]});
+      continue;
+    }
     if (!spec.has_rotation) {
       conditions.push_back({nodes, lambda * spec.displacement});
       continue;

@@ -21,6 +21,10 @@ struct NodeRegion {
 /// of a face catches the nodes on it despite round-off in the mesher.
 std::vector<int> nodes_in_region(const TetMesh& mesh, const NodeRegion& region);
 
+/// The tolerance of a region's box: 1e-9 times the mesh's bounding-box diagonal (m). A point
+/// read from a file (a prescribed displacement's row) matches a node within the same tolerance.
+double region_tolerance(const TetMesh& mesh);
+
 /// A boolean mask of length #V: true for the nodes of `region`.
 std::vector<char> node_mask(const TetMesh& mesh, const NodeRegion& region);
 

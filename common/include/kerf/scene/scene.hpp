@@ -4,6 +4,7 @@
 
 #include "kerf/fem/linear_material.hpp"
 #include "kerf/mesh/node_region.hpp"
+#include "kerf/scene/displacement_file.hpp"
 #include "kerf/solve/linear_solver.hpp"
 
 #include <Eigen/Core>
@@ -27,6 +28,7 @@ struct MeshSpec {
 
 /// u = displacement on the nodes of region, plus, if `has_rotation`, the rigid rotation by
 /// `degrees` about `axis` through `center`: u(X) = (Q - I)(X - center) + displacement.
+/// Or, if `from_file`, each node of the region takes its row of a displacement file.
 struct DirichletSpec {
   NodeRegion region;
   Eigen::Vector3d displacement{0, 0, 0}; ///< m
@@ -34,8 +36,12 @@ struct DirichletSpec {
   Eigen::Vector3d axis{0, 0, 1};         ///< rotation axis (normalised when read)
   double degrees = 0.0;                  ///< rotation angle, right-handed about axis
   Eigen::Vector3d center{0, 0, 0};       ///< a point on the axis (m)
+  bool from_file = false;                ///< "displacement_file" given (read with the scene)
+  DisplacementFile file;                 ///< its rows, when from_file
 
-  /// The prescribed displacement of a node at reference position X.
+  /// The prescribed displacement of a node at reference position X, for an entry with a
+  /// displacement and a rotation; an entry from a file gives each node its row instead
+  /// (scene_dirichlet_nodes).
   Eigen::Vector3d displacement_at(const Eigen::Vector3d& X) const;
 };
 
