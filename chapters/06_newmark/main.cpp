@@ -344,6 +344,7 @@ void CutDynamics::check_state(int step) const {
 void CutDynamics::do_timestep(int step) {
   const double work_before = account_.external_work;
   step_(state_);
+  state_.t = step * scene_.time.dt; // n dt, not dt added n times (its round-off would show in the CSV)
   energy_scale_ += std::abs(account_.external_work - work_before);
   check_state(step);
   output_step(step);
