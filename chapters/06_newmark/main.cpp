@@ -164,10 +164,7 @@ void CutDynamics::make_mesh() {
 // As in chapter 4: the surfaces, the pieces of every tet they cut, and the enrichment.
 void CutDynamics::apply_cut() {
   cuts_ = std::make_unique<kerf::CutSurfaces>(kerf::scene_cut_surfaces(scene_, &std::cerr));
-  pieces_ = kerf::cut_mesh_into_pieces(mesh_, *cuts_);
-  for (int s = 0; s < cuts_->num_surfaces(); ++s)
-    if (pieces_.tets_per_surface[static_cast<std::size_t>(s)] == 0)
-      std::cerr << "warning: " << scene_.source.string() << ": cuts[" << s << "]: the surface does not meet the mesh; it cuts nothing\n";
+  pieces_ = kerf::scene_mesh_pieces(scene_, mesh_, *cuts_, &std::cerr);
   enrichment_ = kerf::make_surface_enrichment(mesh_, pieces_);
   report("cut: " + std::to_string(pieces_.count(kerf::SurfaceCutState::completely_cut)) + " tets completely cut, " +
          std::to_string(pieces_.count(kerf::SurfaceCutState::partially_cut)) + " partially cut; " +
@@ -384,16 +381,11 @@ void CutDynamics::output_step(int step) {
 
 // @sect4{CutDynamics::output_results}
 //
-// After the last step: the nodal field as in chapter 4 and the probes at the last step.
+// After the last step: the probes where the run ended. The last step's pieces are the series'
+// last frame, so nothing else is written here.
 void CutDynamics::output_results() const {
-  Eigen::MatrixXd displacement(mesh_.num_nodes(), 3);
-  for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) displacement.row(v) = state_.u.segment<3>(3 * v).transpose();
-  Eigen::MatrixXd state(mesh_.num_tets(), 1);
-  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) state(t, 0) = static_cast<double>(pieces_.state(t));
-  const std::filesystem::path vtu = options_.out_dir / (scene_.name + ".vtu");
-  kerf::write_vtu(vtu, mesh_, {{"displacement", displacement}}, {{"cut_state", state}});
-  report("wrote " + vtu.string() + ", " + (options_.out_dir / (scene_.name + "_pieces.pvd")).string() + " (" +
-         std::to_string(frames_.size()) + " frames) and " + (options_.out_dir / "energy.csv").string());
+  report("wrote " + (options_.out_dir / (scene_.name + "_pieces.pvd")).string() + " (" + std::to_string(frames_.size()) +
+         " frames) and " + (options_.out_dir / "energy.csv").string());
   if (options_.probes_out) {
     kerf::sample_cut_xfem_probes(*options_.probes_in, *options_.probes_out, *model_, state_.u, &std::cerr);
     report("wrote " + options_.probes_out->string());
