@@ -27,6 +27,20 @@ std::string edited(std::string text, const std::vector<std::pair<std::string, st
   return text;
 }
 
+// Runs the program on `scene` with `probes`, in `dir`, and returns the rows of its probe
+// history (step, t, probe, ux, uy, uz); the run must succeed.
+std::vector<std::vector<double>> probe_history(const std::filesystem::path& dir, const std::string& scene, const std::string& probes) {
+  const auto run = kerf_test::run_program(chapter_06 + " --quiet --scene '" + scene + "' --out '" + (dir / "out").string() + "' --probes '" +
+                                              probes + "' --probes-history '" + (dir / "history.csv").string() + "'",
+                                          dir);
+  INFO(run.err);
+  REQUIRE(run.exit_status == 0);
+  std::string header;
+  const auto rows = kerf_test::read_csv_rows(dir / "history.csv", header);
+  CHECK(header == "step,t,probe,ux,uy,uz");
+  return rows;
+}
+
 } // namespace
 
 TEST_CASE("a piece cut clean off the clamped beam falls as g t^2 / 2 at every step") {
@@ -49,14 +63,7 @@ TEST_CASE("a piece cut clean off the clamped beam falls as g t^2 / 2 at every st
     CAPTURE(c.name);
     const auto dir = kerf_test::fresh_dir("chapter06_free_fall_" + c.name);
     kerf_test::write_text(dir / "scene.json", edited(base, c.replace));
-    const auto run = kerf_test::run_program(chapter_06 + " --quiet --scene '" + (dir / "scene.json").string() + "' --out '" + (dir / "out").string() +
-                                                "' --probes '" + examples + "/06_free_fall_probes.csv' --probes-history '" +
-                                                (dir / "history.csv").string() + "'",
-                                            dir);
-    INFO(run.err);
-    REQUIRE(run.exit_status == 0);
-    std::string header;
-    const auto rows = kerf_test::read_csv_rows(dir / "history.csv", header);
+    const auto rows = probe_history(dir, (dir / "scene.json").string(), examples + "/06_free_fall_probes.csv");
     REQUIRE(rows.size() == 21 * 4);
     // Newmark integrates a constant acceleration exactly (u~ + beta dt^2 g = u + dt v + dt^2 g / 2
     // for any beta), so the only error is the round-off of 20 solves with M + beta dt^2 K, whose
@@ -83,12 +90,7 @@ TEST_CASE("with eqs. 81-82 as printed the freed piece does not fall at g") {
   const auto dir = kerf_test::fresh_dir("chapter06_free_fall_eq81");
   kerf_test::write_text(dir / "scene.json", edited(kerf_test::read_text(examples + "/06_free_fall_lumped.json"),
                                                    {{"\"mass\": \"lumped\"", "\"mass\": \"schoch_eq_81_82\""}}));
-  const auto run = kerf_test::run_program(chapter_06 + " --quiet --scene '" + (dir / "scene.json").string() + "' --out '" + (dir / "out").string() +
-                                              "' --probes '" + examples + "/06_free_fall_probes.csv' --probes-history '" + (dir / "history.csv").string() + "'",
-                                          dir);
-  REQUIRE(run.exit_status == 0);
-  std::string header;
-  const auto rows = kerf_test::read_csv_rows(dir / "history.csv", header);
+  const auto rows = probe_history(dir, (dir / "scene.json").string(), examples + "/06_free_fall_probes.csv");
   REQUIRE(rows.size() == 21 * 4);
   double worst = 0.0;
   for (const auto& row : rows)
@@ -133,13 +135,7 @@ TEST_CASE("a clamp moved along its ramp is where the ramp puts it, and its work 
   // bookkeeping (so it is not checked here), and the clamp did work on the beam.
   const auto dir = kerf_test::fresh_dir("chapter06_moving_clamp");
   kerf_test::write_text(dir / "probes.csv", "x,y,z\n0.03,0.06,0\n0,0,0\n");
-  const auto run = kerf_test::run_program(chapter_06 + " --quiet --scene '" + examples + "/06_beam_shaken.json' --out '" + (dir / "out").string() +
-                                              "' --probes '" + (dir / "probes.csv").string() + "' --probes-history '" + (dir / "history.csv").string() + "'",
-                                          dir);
-  INFO(run.err);
-  REQUIRE(run.exit_status == 0);
-  std::string header;
-  const auto rows = kerf_test::read_csv_rows(dir / "history.csv", header);
+  const auto rows = probe_history(dir, examples + "/06_beam_shaken.json", (dir / "probes.csv").string());
   REQUIRE(rows.size() == 81 * 2);
   double worst = 0.0;
   for (const auto& row : rows) {
@@ -154,6 +150,7 @@ TEST_CASE("a clamp moved along its ramp is where the ramp puts it, and its work 
   // The probe sits on a node: its barycentric coordinates are 1 and 0 up to round-off (~1e-16),
   // times displacements of about 0.02 m.
   CHECK(worst <= 1e-14);
+  std::string header;
   const auto energy = kerf_test::read_csv_rows(dir / "out" / "energy.csv", header);
   REQUIRE(energy.size() == 81);
   CHECK(energy[40][2] > 0.0);     // the beam moves
