@@ -341,7 +341,13 @@ void CutDynamics::check_state(int step) const {
 // One step of the integrator, the divergence check, and the step's lines of output.
 void CutDynamics::do_timestep(int step) {
   const double work_before = account_.external_work;
-  step_(state_);
+  try {
+    step_(state_);
+  } catch (const kerf::InputError&) {
+    throw;
+  } catch (const std::exception& error) { // a solver that fails (a matrix no longer positive definite): say where
+    throw std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(state_.t) + " s): " + error.what());
+  }
   state_.t = step * scene_.time.dt; // n dt, not dt added n times (its round-off would show in the CSV)
   energy_scale_ += std::abs(account_.external_work - work_before);
   check_state(step);
