@@ -2,6 +2,8 @@
 // (energy.csv, the probes' history and last state, the .pvd series, the moments), and the bad
 // inputs: a static scene, an integrator the corotated model is not stepped with here, an
 // explicit step above its limit, a run that diverges, and the options other chapters refuse.
+#include "kerf/app/command_line.hpp"
+#include "kerf/app/input_error.hpp"
 #include "support/run_program.hpp"
 
 #include <doctest/doctest.h>
@@ -147,4 +149,20 @@ TEST_CASE("bad inputs get a one-line error naming the field, and a diverging run
   const auto chapter4 = kerf_test::run_program(chapter_04 + " --probes '" + (dir / "probes.csv").string() + "' --probes-history h.csv", dir);
   CHECK(chapter4.exit_status == 2);
   CHECK(chapter4.err.find("chapter 6") != std::string::npos);
+}
+
+TEST_CASE("--probes goes with --probes-out, --probes-history or both") {
+  const auto parse = [](std::vector<const char*> args) {
+    args.insert(args.begin(), "06_newmark");
+    return kerf::parse_command_line(static_cast<int>(args.size()), args.data());
+  };
+  const kerf::CommandLine history = parse({"--probes", "in.csv", "--probes-history", "h.csv"});
+  CHECK(history.probes_history == std::filesystem::path("h.csv"));
+  CHECK_FALSE(history.probes_out.has_value());
+  const kerf::CommandLine both = parse({"--probes-history", "h.csv", "--probes", "in.csv", "--probes-out", "o.csv"});
+  CHECK(both.probes_out == std::filesystem::path("o.csv"));
+  CHECK_THROWS_AS(parse({"--probes", "in.csv"}), kerf::InputError);
+  CHECK_THROWS_AS(parse({"--probes-history", "h.csv"}), kerf::InputError);
+  CHECK_THROWS_AS(parse({"--probes-out", "o.csv"}), kerf::InputError);
+  CHECK_THROWS_AS(parse({"--probes", "in.csv", "--probes-history"}), kerf::InputError); // no value
 }
