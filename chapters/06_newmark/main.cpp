@@ -240,15 +240,25 @@ void CutDynamics::setup_linear_integrator() {
   } else if (time.integrator == "backward_euler") {
     stepping(std::make_shared<kerf::BackwardEulerIntegrator>(linear_, time.dt, scene_.solver));
   } else {
-    auto explicit_step = std::make_shared<kerf::CentralDifferenceIntegrator>(linear_, time.dt, true, scene_.solver);
+    // The integrator refuses a step above its estimate, or an estimate whose power iteration did
+    // not converge (it errs on the unsafe side), unless forced; we say which, with the estimate.
+    std::shared_ptr<kerf::CentralDifferenceIntegrator> explicit_step;
+    try {
+      explicit_step = std::make_shared<kerf::CentralDifferenceIntegrator>(linear_, time.dt, time.allow_unstable, scene_.solver);
+    } catch (const std::invalid_argument&) {
+      const double critical = kerf::CentralDifferenceIntegrator(linear_, time.dt, true, scene_.solver).critical_step();
+      std::ostringstream problem;
+      if (time.dt > critical)
+        problem << "dt = " << time.dt << " s is above the central difference's critical step 2 / omega_max = " << critical
+                << " s (estimated): it would blow up; take a smaller dt or set \"allow_unstable\": true";
+      else
+        problem << "the power iteration for omega_max did not converge, so the critical step is unknown (estimated " << critical
+                << " s, which errs large); set \"allow_unstable\": true to step anyway";
+      throw kerf::InputError(scene_.source.string(), "time.dt", problem.str());
+    }
     std::ostringstream line;
     line << "central difference: critical step 2 / omega_max = " << explicit_step->critical_step() << " s (estimated), dt = " << time.dt << " s";
     report(line.str());
-    if (time.dt > explicit_step->critical_step() && !time.allow_unstable)
-      throw kerf::InputError(scene_.source.string(), "time.dt",
-                             "dt = " + std::to_string(time.dt) + " s is above the central difference's critical step 2 / omega_max = " +
-                                 std::to_string(explicit_step->critical_step()) +
-                                 " s (estimated): it would blow up; take a smaller dt or set \"allow_unstable\": true");
     stepping(explicit_step);
   }
   Eigen::VectorXd v0 = Eigen::VectorXd::Zero(3 * model_->num_dof_nodes());
