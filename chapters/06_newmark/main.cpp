@@ -499,6 +499,8 @@ int main(int argc, char** argv) {
           throw kerf::InputError(scene.source.string(), "time.integrator",
                                  "\"static\" (or no \"time\" field) is the solve of chapters 1-5 (04_cut_quadrature); 06_newmark "
                                  "steps in time: give \"newmark\", \"hht_alpha\", \"backward_euler\" or \"central_difference\"");
+        if (!(scene.material.density > 0.0))
+          throw kerf::InputError(scene.source.string(), "material.density", "dynamics needs a positive density (kg/m^3): without mass there is no inertia");
         chapter06::CutDynamics problem(scene, options);
         problem.run();
       },

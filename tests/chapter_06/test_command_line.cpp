@@ -116,6 +116,11 @@ TEST_CASE("bad inputs get a one-line error naming the field, and a diverging run
       {"hht_corotational", flap_scene("corotational", R"({"integrator": "hht_alpha", "dt": 0.01, "steps": 2})"), "time.integrator"},
       {"explicit_too_long", flap_scene("linear", R"({"integrator": "central_difference", "dt": 0.01, "steps": 2})"), "time.dt"},
       {"corotation", flap_scene("corotational", R"({"integrator": "newmark", "dt": 0.01, "steps": 2, "corotation": "sometimes"})"), "time.corotation"},
+      {"massless", [] {
+         std::string text = flap_scene("linear", R"({"integrator": "newmark", "dt": 0.01, "steps": 2})");
+         text.replace(text.find("\"density\": 1070"), 15, "\"density\": 0");
+         return text;
+       }(), "material.density"},
   };
   for (const Case& c : cases) {
     CAPTURE(c.name);
