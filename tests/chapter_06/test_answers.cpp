@@ -73,6 +73,7 @@ TEST_CASE("a piece cut clean off the clamped beam falls as g t^2 / 2 at every st
       {"corotational_lumped_frozen", {{"\"linear\"", "\"corotational\""}}},
       {"corotational_consistent_frozen", {{"\"linear\"", "\"corotational\""}, {"\"mass\": \"lumped\"", "\"mass\": \"consistent\""}}},
       {"corotational_lumped_newton", {{"\"linear\"", "\"corotational\""}, {"\"mass\": \"lumped\"", "\"mass\": \"lumped\", \"corotation\": \"newton\""}}},
+      {"corotational_tet10_consistent", {{"\"linear\"", "\"corotational\""}, {"\"order\": 1", "\"order\": 2"}, {"\"mass\": \"lumped\"", "\"mass\": \"consistent\""}}},
   };
   for (const Case& c : cases) {
     CAPTURE(c.name);
