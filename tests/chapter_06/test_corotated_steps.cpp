@@ -3,6 +3,7 @@
 // trapezoidal work of f_int misses W by O(dt^3) a step), but only like dt with the rotations
 // frozen (the step's force f_int(u_n) + K_R (u - u_n) misses f_int(u_{n+1}) by the rotation
 // terms of the tangent times the step's motion, O(dt) a step in force, O(dt^2) in energy).
+#include "chapter_06/clamped_body.hpp"
 #include "dynamics/cut_body.hpp"
 #include "kerf/dynamics/nonlinear_newmark.hpp"
 #include "kerf/mesh/box_mesh.hpp"
@@ -25,9 +26,7 @@ TEST_CASE("the energy rest of a corotated swing shrinks like dt^2 with Newton an
   // hinge), released from rest under gravity along x: it swings through a large rotation.
   const cut_body::CutBody body(kerf::make_box_mesh({0, 0, 0}, {0.2, 0.2, 1}, {2, 2, 6}),
                                {cut_body::plane_surface({0, 0, 1}, 0.55, {0.05, 0.1, 0.55}, 0.1)}, material);
-  std::vector<int> clamped;
-  for (Eigen::Index i = 0; i < body.mesh.num_nodes(); ++i)
-    if (body.mesh.nodes(i, 2) == 0.0) clamped.push_back(static_cast<int>(i));
+  const std::vector<int> clamped = clamped_body::nodes_at_z0(body.mesh);
   const Eigen::Index size = 3 * body.model.num_dof_nodes();
   const kerf::DofMap all_free = kerf::make_dof_map(body.model.num_dof_nodes(), {});
   auto assembler = std::make_shared<kerf::SparseAssembler>(body.model.assembly_slots(), all_free);

@@ -2,6 +2,7 @@
 // dynamics area's linear Newmark: the same states to round-off, both rotation updates, and an
 // energy account whose rest (the "numerical" part) is round-off, as newmark.hpp's closed form
 // says for the average acceleration rule, with Rayleigh damping on.
+#include "chapter_06/clamped_body.hpp"
 #include "dynamics/cut_body.hpp"
 #include "kerf/dynamics/newmark.hpp"
 #include "kerf/dynamics/nonlinear_newmark.hpp"
@@ -22,9 +23,7 @@ TEST_CASE("on a linear cut body with still clamps the nonlinear Newmark step is 
   const cut_body::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 3}),
                                {cut_body::plane_surface({0.1, 0, 1}, 0.62, {0.5, 0.5, 0.5}, 0.7)}, material);
   REQUIRE(body.enrichment.num_enrichments() > 0);
-  std::vector<int> clamped;
-  for (Eigen::Index i = 0; i < body.mesh.num_nodes(); ++i)
-    if (body.mesh.nodes(i, 2) == 0.0) clamped.push_back(static_cast<int>(i));
+  const std::vector<int> clamped = clamped_body::nodes_at_z0(body.mesh);
   const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(body.model, {{clamped, {0, 0, 0}}});
   const Eigen::SparseMatrix<double> M = kerf::assemble_cut_xfem_mass(body.model, material.density, cut_body::subtets);
   const Eigen::SparseMatrix<double> K = body.stiffness();
@@ -43,10 +42,7 @@ TEST_CASE("on a linear cut body with still clamps the nonlinear Newmark step is 
   system.dofs = dofs;
   system.load = [f](double) { return f; };
   system.motion = [zero](double) { return kerf::PrescribedMotion{zero, zero, zero}; };
-  system.internal_force = [&K](const Eigen::VectorXd& u, kerf::CorotationalTangent, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* Kt) {
-    f_int = K * u;
-    if (Kt) *Kt = K;
-  };
+  system.internal_force = clamped_body::linear_force(K);
   system.elastic_energy = [&K](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
 
   for (const kerf::RotationUpdate update : {kerf::RotationUpdate::frozen, kerf::RotationUpdate::newton}) {
@@ -88,9 +84,7 @@ TEST_CASE("with a clamp moved along the smooth ramp, the energy account's rest s
   // leaves a rest (the first test case).
   const cut_body::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 3}),
                                {cut_body::plane_surface({0.1, 0, 1}, 0.62, {0.5, 0.5, 0.5}, 0.7)}, material);
-  std::vector<int> clamped;
-  for (Eigen::Index i = 0; i < body.mesh.num_nodes(); ++i)
-    if (body.mesh.nodes(i, 2) == 0.0) clamped.push_back(static_cast<int>(i));
+  const std::vector<int> clamped = clamped_body::nodes_at_z0(body.mesh);
   const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(body.model, {{clamped, {0, 0, 0}}});
   const Eigen::SparseMatrix<double> K = body.stiffness();
   const Eigen::Index size = K.rows();
@@ -109,10 +103,7 @@ TEST_CASE("with a clamp moved along the smooth ramp, the energy account's rest s
     }
     return m;
   };
-  system.internal_force = [&K](const Eigen::VectorXd& u, kerf::CorotationalTangent, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* Kt) {
-    f_int = K * u;
-    if (Kt) *Kt = K;
-  };
+  system.internal_force = clamped_body::linear_force(K);
   system.elastic_energy = [&K](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
   std::vector<double> rest, work;
   for (const int steps : {25, 50, 100}) {
