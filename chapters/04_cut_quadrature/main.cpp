@@ -156,10 +156,7 @@ void CutQuadrature::apply_cut() {
   std::vector<kerf::TriangleSurface> surfaces = kerf::scene_cut_surfaces(scene_, &std::cerr);
   if (blade_) surfaces.push_back(*blade_);
   cuts_ = std::make_unique<kerf::CutSurfaces>(std::move(surfaces));
-  pieces_ = kerf::cut_mesh_into_pieces(mesh_, *cuts_);
-  for (int s = 0; s < cuts_->num_surfaces(); ++s)
-    if (pieces_.tets_per_surface[static_cast<std::size_t>(s)] == 0)
-      std::cerr << "warning: " << scene_.source.string() << ": cuts[" << s << "]: the surface does not meet the mesh; it cuts nothing\n";
+  pieces_ = kerf::scene_mesh_pieces(scene_, mesh_, *cuts_, &std::cerr);
   report("cut: " + std::to_string(cuts_->num_triangles()) + " triangles in " + std::to_string(cuts_->num_surfaces()) + " surfaces; " +
          std::to_string(pieces_.count(kerf::SurfaceCutState::completely_cut)) + " tets completely cut, " +
          std::to_string(pieces_.count(kerf::SurfaceCutState::partially_cut)) + " partially cut, " +

@@ -98,6 +98,8 @@ TEST_CASE("the time integrators of chapter 6 read their own fields, and their de
   CHECK(newmark.gamma == 0.5);
   CHECK(newmark.mass == "consistent");
   CHECK(newmark.initial_velocity.z() == -1.0);
+  CHECK(newmark.corotation == "frozen");
+  CHECK(time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "corotation": "newton"})").corotation == "newton");
   CHECK_FALSE(newmark.allow_unstable);
   // A pair outside the unconditionally stable range, asked for on purpose.
   const kerf::TimeSpec unstable = time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "beta": 0.1, "allow_unstable": true})");
@@ -166,6 +168,11 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "time": {"integrator": "backward_euler", "dt": 0.01, "steps": 5, "beta": 0.25}})", "time.beta"},
       {"{" + m + R"(, "time": {"integrator": "central_difference", "dt": 0.01, "steps": 5, "mass": "consistent"}})", "time.mass"},
       {"{" + m + R"(, "time": {"integrator": "hht_alpha", "dt": 0.01, "steps": 5, "alpha": -0.5}})", "time.alpha"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "corotation": "lagged"}})", "time.corotation"},
+      {"{" + m + R"(, "time": {"integrator": "static", "corotation": "newton"}})", "time.corotation"},
+      {"{" + m + R"(, "dirichlet": [{"region": {"nodes": [0]}, "ramp_time": -1}], "time": {"integrator": "newmark", "dt": 0.01, "steps": 5}})",
+       "dirichlet[0].ramp_time"},
+      {"{" + m + R"(, "dirichlet": [{"region": {"nodes": [0]}, "ramp_time": 0.5}]})", "dirichlet[0].ramp_time"},  // static: nothing moves
       {"{" + m + R"(, "output": {"every": 0}})", "output.every"},
       {"{" + m + R"(, "solver": {"type": "umfpack"}})", "solver.type"},
       {"{" + m + R"(, "solver": {"ordering": "colamd"}})", "solver.ordering"},

@@ -20,13 +20,14 @@ CommandLine parse_command_line(int argc, const char* const* argv) {
     else if (arg == "--probes") options.probes_in = value();
     else if (arg == "--probes-out") options.probes_out = value();
     else if (arg == "--moments-out") options.moments_out = value();
+    else if (arg == "--probes-history") options.probes_history = value();
     else if (arg == "--out") options.out_dir = value();
     else if (arg == "--quiet") options.quiet = true;
     else if (arg == "--help" || arg == "-h") options.help = true;
     else throw InputError("command line", std::string(arg), "unknown option (see --help)");
   }
-  if (options.probes_in.has_value() != options.probes_out.has_value())
-    throw InputError("command line", "--probes", "--probes and --probes-out go together");
+  if (options.probes_in.has_value() != (options.probes_out || options.probes_history))
+    throw InputError("command line", "--probes", "--probes and --probes-out (or --probes-history) go together");
   return options;
 }
 
@@ -49,6 +50,8 @@ int run_guarded(int argc, const char* const* argv, const std::string& program, c
     const CommandLine options = parse_command_line(argc, argv);
     if (options.moments_out && !taught.moments_out)
       throw InputError("command line", "--moments-out", "the moments of cut pieces are taught from chapter 4 on (04_cut_quadrature)");
+    if (options.probes_history && !taught.probes_history)
+      throw InputError("command line", "--probes-history", "the probes over time are taught from chapter 6 on (06_newmark)");
     if (options.help) {
       std::cout << usage;
       return;

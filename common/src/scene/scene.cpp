@@ -215,9 +215,11 @@ LinearMaterial read_material(const ObjectReader& r) {
 std::vector<DirichletSpec> read_dirichlet(const ObjectReader& r, const std::filesystem::path& base) {
   return read_list<DirichletSpec>(r, "dirichlet", [&](const json& entry, const std::string& path) {
     ObjectReader d(entry, path, r.file());
-    d.allow_only({"region", "displacement", "rotation", "displacement_file"});
+    d.allow_only({"region", "displacement", "rotation", "displacement_file", "ramp_time"});
     DirichletSpec spec;
     spec.region = read_region(d.at("region"), path + ".region", r.file());
+    spec.ramp_time = d.number("ramp_time", 0.0);
+    if (!(spec.ramp_time >= 0.0)) d.fail(path + ".ramp_time", "expected a non-negative time (s)");
     if (d.has("displacement_file")) {
       if (d.has("displacement") || d.has("rotation"))
         d.fail(d.field("displacement_file"), "expected either \"displacement_file\" or \"displacement\" and \"rotation\", not both");
@@ -312,12 +314,13 @@ TimeSpec read_time(const ObjectReader& r) {
   if (!r.has("time")) return time;
   ObjectReader t(r.at("time"), "time", r.file());
   t.allow_only({"integrator", "dt", "steps", "beta", "gamma", "alpha", "rayleigh", "mass", "tolerance", "initial_velocity",
-                "allow_unstable"});
+                "allow_unstable", "corotation"});
   time.integrator = t.text("integrator", "static");
   const bool newmark = time.integrator == "newmark", hht = time.integrator == "hht_alpha";
   const bool dynamic = newmark || hht || time.integrator == "backward_euler" || time.integrator == "central_difference";
   if (time.integrator == "static") {
-    for (const char* key : {"dt", "steps", "beta", "gamma", "alpha", "rayleigh", "mass", "tolerance", "initial_velocity", "allow_unstable"})
+    for (const char* key : {"dt", "steps", "beta", "gamma", "alpha", "rayleigh", "mass", "tolerance", "initial_velocity", "allow_unstable",
+                            "corotation"})
       if (t.has(key)) t.fail(t.field(key), "only meaningful with a dynamic integrator");
     return time;
   }
@@ -337,6 +340,9 @@ TimeSpec read_time(const ObjectReader& r) {
   time.initial_velocity = t.vector<3>("initial_velocity", Eigen::Vector3d::Zero());
   time.allow_unstable = t.boolean("allow_unstable", false);
   time.mass = t.text("mass", time.integrator == "central_difference" ? "lumped" : "consistent");
+  time.corotation = t.text("corotation", time.corotation);
+  if (time.corotation != "frozen" && time.corotation != "newton")
+    t.fail("time.corotation", "expected \"frozen\" or \"newton\", got \"" + time.corotation + "\"");
   if (!(time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
   if (time.steps < 1) t.fail("time.steps", "expected a positive integer");
   if ((time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
@@ -499,6 +505,9 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.quadrature = read_quadrature(r);
   scene.crack_tip = read_crack_tip(r);
   scene.time = read_time(r);
+  for (std::size_t i = 0; i < scene.dirichlet.size(); ++i)
+    if (scene.dirichlet[i].ramp_time > 0.0 && scene.time.integrator == "static")
+      r.fail("dirichlet[" + std::to_string(i) + "].ramp_time", "only meaningful with a dynamic time integrator (chapter 6 on)");
   scene.output_every = read_output_every(r);
   scene.quasi_static = read_quasi_static(r);
   scene.solver = read_solver(r);

@@ -27,4 +27,12 @@ std::vector<TriangleSurface> scene_cut_surfaces(const Scene& scene, std::ostream
   return surfaces;
 }
 
+MeshPieces scene_mesh_pieces(const Scene& scene, const TetMesh& mesh, const CutSurfaces& cuts, std::ostream* warnings) {
+  MeshPieces pieces = cut_mesh_into_pieces(mesh, cuts);
+  for (int s = 0; s < cuts.num_surfaces(); ++s)
+    if (warnings && pieces.tets_per_surface[static_cast<std::size_t>(s)] == 0)
+      *warnings << "warning: " << scene.source.string() << ": cuts[" << s << "]: the surface does not meet the mesh; it cuts nothing\n";
+  return pieces;
+}
+
 } // namespace kerf

@@ -241,6 +241,46 @@ CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMe
   return stats;
 }
 
+template <int n>
+double CutXfemModel::tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const {
+  constexpr int m3 = 3 * n;
+  Eigen::Matrix<double, n, 3> X;
+  for (int a = 0; a < n; ++a) X.row(a) = mesh_.nodes.row(mesh_.tets(t, a));
+  double energy = 0.0;
+  for (const Piece& piece : integrated_pieces(t)) {
+    Eigen::Matrix<double, n, 3> u_p; // the phantom element's nodal displacements, as in assemble_tet
+    for (int a = 0; a < n; ++a) {
+      Eigen::Vector3d value = u.segment<3>(3 * mesh_.tets(t, a));
+      const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
+      if (s >= 0) value += u.segment<3>(3 * slots_(t, s));
+      u_p.row(a) = value.transpose();
+    }
+    const auto point_energy = [&](const Eigen::Matrix<double, n, 3>& G, double weight) {
+      Eigen::Matrix<double, m3, m3> K_q = Eigen::Matrix<double, m3, m3>::Zero();
+      add_stiffness_integrand<n>(G, weight, material_.mu(), material_.lambda(), K_q);
+      Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+      if (corotated) R = element_rotation(Eigen::Matrix3d::Identity() + u_p.transpose() * G, rotation).R;
+      const Eigen::Matrix<double, m3, 1> d = corotated_displacement<n>(R, X, u_p);
+      return 0.5 * d.dot(K_q * d);
+    };
+    if constexpr (n == 4) {
+      double weight = 0.0;
+      for (const Point& point : piece.points) weight += point.weight;
+      if (!piece.points.empty()) energy += point_energy(piece.points.front().G.template topRows<4>(), weight);
+    } else {
+      for (const Point& point : piece.points) energy += point_energy(point.G, point.weight);
+    }
+  }
+  return energy;
+}
+
+double CutXfemModel::energy(const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const {
+  double energy = 0.0;
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t)
+    energy += mesh_.order() == 1 ? tet_energy<4>(t, u, corotated, rotation) : tet_energy<10>(t, u, corotated, rotation);
+  return energy;
+}
+
 void CutXfemModel::assemble_linear_stiffness(SparseAssembler& assembler, Eigen::VectorXd& rhs_free) const {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3 * num_dof_nodes());
   Eigen::VectorXd f_int = zero;

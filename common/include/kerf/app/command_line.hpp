@@ -15,18 +15,21 @@ struct CommandLine {
   std::optional<std::filesystem::path> probes_in;   ///< --probes IN.csv
   std::optional<std::filesystem::path> probes_out;  ///< --probes-out OUT.csv
   std::optional<std::filesystem::path> moments_out; ///< --moments-out FILE (chapter 4 on): the moments of every cut piece
+  std::optional<std::filesystem::path> probes_history; ///< --probes-history FILE (chapter 6 on): the probes at every step
   std::filesystem::path out_dir = "output";         ///< --out DIR: where VTK files and CSV go
   bool quiet = false;                               ///< --quiet: no progress lines
   bool help = false;                                ///< --help
 };
 
-/// Parses argv. Unknown options, missing values, and --probes without --probes-out (or the
-/// reverse) are InputErrors with the file name "command line".
+/// Parses argv. Unknown options, missing values, --probes without --probes-out or
+/// --probes-history, and either of those without --probes are InputErrors with the file name
+/// "command line".
 CommandLine parse_command_line(int argc, const char* const* argv);
 
 /// The options that arrive with later chapters; a program that has not taught one refuses it.
 struct CommandLineFeatures {
   bool moments_out = false; ///< --moments-out (chapter 4 on)
+  bool probes_history = false; ///< --probes-history (chapter 6 on)
 };
 
 /// Runs `body` and turns every exception into one line on stderr and a non-zero exit status:

@@ -38,6 +38,10 @@ struct DirichletSpec {
   Eigen::Vector3d center{0, 0, 0};       ///< a point on the axis (m)
   bool from_file = false;                ///< "displacement_file" given (read with the scene)
   DisplacementFile file;                 ///< its rows, when from_file
+  /// Dynamics (chapter 6): > 0 moves the nodes from rest to the displacement (and angle, or the
+  /// file's values) along a smooth ramp over this many seconds (scene_prescribed_motion.hpp); 0
+  /// holds them there from t = 0.
+  double ramp_time = 0.0;
 
   /// The prescribed displacement of a node at reference position X, for an entry with a
   /// displacement and a rotation; an entry from a file gives each node its row instead
@@ -106,11 +110,14 @@ struct TimeSpec {
   /// piece fall at g), "row_sum", "hrz", "schoch_eq_81_82" (dynamics/lumped_mass.hpp). The
   /// default is "consistent", "lumped" for the central difference (which needs a diagonal mass).
   std::string mass = "consistent";
-  /// The relative residual each step's solve stops at when the solver is iterative. Provisional:
-  /// chapter 6's speed study is to choose it (issue 11, item 8).
+  /// The relative residual at which a corotational Newton step ("corotation": "newton") stops.
+  /// Provisional: chapter 6's speed study is to choose it (issue 11, item 8).
   double tolerance = 1e-8;
   Eigen::Vector3d initial_velocity{0.0, 0.0, 0.0}; ///< m/s, the same at every node
   bool allow_unstable = false;              ///< run a Newmark pair outside 2 beta >= gamma >= 1/2, or an explicit step above its limit
+  /// How a corotational Newmark step treats the rotations: "frozen" (rotations of the step's
+  /// start, one linear solve, Mueller and Gross 2004) or "newton" (iterated to `tolerance`).
+  std::string corotation = "frozen";
 };
 
 /// Everything a scene file says. Defaults are those of the book's scene reference page.

@@ -66,6 +66,12 @@ public:
 
   /// The linear XFEM stiffness K^X added into `assembler`, lifting into rhs_free.
   void assemble_linear_stiffness(SparseAssembler& assembler, Eigen::VectorXd& rhs_free) const;
+  /// The strain energy of the state u (J), summed over the points where assemble() evaluates the
+  /// forces: 1/2 d^T K_q d with d = R^T x - X the corotated displacement of the point's phantom
+  /// element (R = I when `corotated` is false, the linear XFEM energy 1/2 u^T K^X u). For the
+  /// polar rotation of an isotropic material, assemble()'s f_int is its gradient
+  /// (corotated_element.hpp), which is why chapter 6's energy account uses it.
+  double energy(const Eigen::VectorXd& u, bool corotated, RotationMethod rotation = RotationMethod::automatic) const;
   /// The body-force load sum_p T_p^T int_p N^T rho g (3 num_dof_nodes()).
   Eigen::VectorXd gravity_load(double density, const Eigen::Vector3d& g) const;
   /// The displacement at x (m) in tet t, on the piece that holds x (one above the cut, if x lies
@@ -122,6 +128,10 @@ private:
   void assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                     bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
                     CorotationStatistics& stats) const;
+
+  // One tet's share of energy().
+  template <int n>
+  double tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const;
 
   const TetMesh& mesh_;
   LinearMaterial material_;

@@ -1,0 +1,122 @@
+/// @file nonlinear_newmark.hpp
+/// @brief Newmark's method for M a + C v + f_int(u) = f(t) with a nonlinear internal force (the corotated body, Paper 000
+///        eq. 40) and prescribed DOFs that move in time: rotations frozen per step (Mueller and Gross), or Newton.
+#pragma once
+
+#include "kerf/corotation/corotated_element.hpp"
+#include "kerf/dynamics/energy_account.hpp"
+#include "kerf/dynamics/newmark.hpp"
+#include "kerf/fem/dof_map.hpp"
+#include "kerf/solve/linear_solver.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <functional>
+#include <memory>
+
+namespace kerf {
+
+/// Displacement, velocity and acceleration of the prescribed DOFs at one time, on all DOFs
+/// (the free entries are not read). Derivatives of one function of time, or the step's energy
+/// account books a work the clamp never did.
+struct PrescribedMotion {
+  Eigen::VectorXd u, v, a;
+};
+
+/// The internal force f_int(u) on all DOFs and, when `K` is given, its tangent on all DOFs
+/// (both triangles): the warped R K R^T (eq. 38) or the consistent one, as `tangent` asks. A
+/// linear body returns K u and K whatever `tangent` says.
+using InternalForce = std::function<void(const Eigen::VectorXd& u, CorotationalTangent tangent, Eigen::VectorXd& f_int,
+                                         Eigen::SparseMatrix<double>* K)>;
+
+/// M a + C v + f_int(u) = f(t) + r(t) on all DOFs, r the reactions, non-zero on the prescribed DOFs only.
+struct NonlinearDynamicSystem {
+  Eigen::SparseMatrix<double> M;                    ///< mass, all DOFs, symmetric; M_ff positive definite (kg)
+  double rayleigh_alpha = 0.0;                      ///< C = alpha M + beta K_R, 1/s
+  double rayleigh_beta = 0.0;                       ///< s; K_R the warped tangent at the start of each step
+  DofMap dofs;                                      ///< which DOFs are prescribed (its values are not read: `motion` gives them)
+  std::function<Eigen::VectorXd(double)> load;      ///< f(t) on all DOFs (N)
+  std::function<PrescribedMotion(double)> motion;   ///< the prescribed DOFs' u, v, a at t
+  InternalForce internal_force;                     ///< f_int and its tangent
+  std::function<double(const Eigen::VectorXd&)> elastic_energy; ///< W(u) with f_int = dW/du (J)
+};
+
+/// How a step treats f_int.
+enum class RotationUpdate {
+  /// Mueller and Gross (2004), notes 6.3: the rotations of the step's start, f_int(u) ~
+  /// f_int(u_n) + K_R (u - u_n) with the warped K_R, so the step is one linear solve. Exact
+  /// for a linear body; for the corotated one it lags the rotations by a step.
+  frozen,
+  /// Newton's method on the step's equations with the consistent tangent, until the relative
+  /// residual |r_f| / max(|r_f^0|, |f_f|, |(M a_n)_f|) is at most the tolerance.
+  newton,
+};
+
+struct NonlinearNewmarkSettings {
+  NewmarkParameters newmark;                   ///< beta, gamma (default: average acceleration)
+  RotationUpdate update = RotationUpdate::frozen;
+  double tolerance = 1e-8;                     ///< newton: relative residual of each step
+  int max_iterations = 30;                     ///< newton: iterations per step before giving up
+  SolverSettings solver;
+};
+
+/// What one step did.
+struct NonlinearStepReport {
+  StepEnergy energy;              ///< external work (loads and reactions), damping, numerical (the rest of the balance)
+  int iterations = 0;             ///< linear solves
+  double relative_residual = 0.0; ///< newton: the last one; frozen: 0 (not measured)
+  bool converged = true;          ///< newton: whether it met the tolerance
+};
+
+/// Newmark in acceleration form (as newmark.hpp) on all DOFs: the free ones predicted and
+/// corrected by Newmark's updates, the prescribed ones set to the motion at t_{n+1}. The
+/// matrix of each solve is M_ff + gamma dt C_ff + beta dt^2 K_ff (K the step's tangent), its
+/// pattern analysed once.
+///
+/// Damping is Rayleigh's on the current rotated stiffness, C = alpha M + beta K_R(u_n) (notes
+/// 6.3, as SOFA and Vega do; the papers do not say), rebuilt every step and held through the
+/// step's Newton iterations, so that beta damps the rate of strain and not a rigid rotation.
+///
+/// The energy account (StepEnergy): external work = trapezoidal work of the loads on all DOFs
+/// plus that of the reactions r = M a + C v + f_int - f on the prescribed ones,
+/// Delta u_c . (r_n + r_{n+1}) / 2; damping = Delta u . C v_bar; numerical = the rest, so that
+/// kinetic + W(u) + dissipated - external work stays at its start value by construction. For a
+/// linear body, still clamps and the average acceleration rule the rest is round-off (the
+/// closed form of newmark.hpp is zero); a frozen corotated step or a moving clamp (whose
+/// motion need not obey Newmark's updates) leave a small rest, which the account shows.
+class NonlinearNewmarkIntegrator {
+public:
+  /// @param system kept by reference
+  /// @param dt the time step (s), positive
+  NonlinearNewmarkIntegrator(const NonlinearDynamicSystem& system, double dt, NonlinearNewmarkSettings settings);
+
+  /// The state at t0 from u0 and v0 (full; the prescribed entries are taken from the motion)
+  /// with the acceleration that satisfies the equations there.
+  DynamicState initial_state(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, double t0);
+  /// The energy account at the start of a run: kinetic 1/2 v^T M v, elastic W(u).
+  EnergyAccount start_account(const DynamicState& state) const;
+  /// Advances `state` to t + dt.
+  NonlinearStepReport step(DynamicState& state);
+  /// Books a step in the account: the state's energies, the step's works.
+  void add_step(EnergyAccount& account, const DynamicState& state, const NonlinearStepReport& report) const;
+
+private:
+  Eigen::SparseMatrix<double> free_block(const Eigen::SparseMatrix<double>& A) const { return P_ * A * Pt_; }
+  // The full vector: `free` on the free DOFs, `prescribed`'s entries on the others.
+  Eigen::VectorXd combine(const Eigen::VectorXd& free, const Eigen::VectorXd& prescribed) const;
+  void solve(const Eigen::SparseMatrix<double>& A_ff, const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
+  // W(u), remembered for the last u asked about: a step needs W at its start, which the step
+  // before computed at its end, and the account asks again (a corotated W costs an assembly).
+  double elastic_energy(const Eigen::VectorXd& u) const;
+
+  const NonlinearDynamicSystem& system_;
+  double dt_;
+  NonlinearNewmarkSettings settings_;
+  Eigen::SparseMatrix<double> P_, Pt_; // picks the free DOFs: A_ff = P A P^T
+  std::unique_ptr<LinearSolver> solver_;
+  bool analysed_ = false;
+  mutable Eigen::VectorXd energy_u_;
+  mutable double energy_value_ = 0.0;
+};
+
+} // namespace kerf
