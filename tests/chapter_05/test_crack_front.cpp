@@ -157,6 +157,7 @@ TEST_CASE("a curved front: the arc inside the box, with polar coordinates contin
   for (const double psi : {0.3, 2.0, -2.8, 3.0}) {
     const double rho = 0.05;
     double previous_theta = 0.0, previous_r = 0.0, largest_jump = 0.0, largest_r_jump = 0.0, worst_theta = 0.0;
+    double previous_naive = 0.0, largest_naive_jump = 0.0;
     const int samples = 4000;
     for (int k = 0; k <= samples; ++k) {
       const double phi = -0.5 + 1.0 * k / samples; // inside |phi| < phi_exit = 0.675
@@ -164,20 +165,90 @@ TEST_CASE("a curved front: the arc inside the box, with polar coordinates contin
       const Eigen::Vector3d x = centre + (R + rho * std::cos(psi)) * radial + rho * std::sin(psi) * Eigen::Vector3d::UnitZ();
       const kerf::FrontPolar p = fronts.polar(x);
       worst_theta = std::max(worst_theta, std::abs(p.theta - psi));
+      // Paulus's frame for comparison: the closest point of the polyline and its segment's frame.
+      double closest = 1e300, naive = 0.0;
+      for (const kerf::FrontSegment& s : line.segments) {
+        const Eigen::Vector3d e = s.end - s.start;
+        const Eigen::Vector3d foot = s.start + std::clamp((x - s.start).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
+        if ((x - foot).norm() >= closest) continue;
+        closest = (x - foot).norm();
+        naive = std::atan2((x - foot).dot(s.b), (x - foot).dot(s.a));
+      }
       if (k > 0) {
         largest_jump = std::max(largest_jump, std::abs(p.theta - previous_theta));
         largest_r_jump = std::max(largest_r_jump, std::abs(p.r - previous_r));
+        largest_naive_jump = std::max(largest_naive_jump, std::abs(naive - previous_naive));
       }
       previous_theta = p.theta;
       previous_r = p.r;
+      previous_naive = naive;
     }
-    INFO("psi = " << psi << ": largest step " << largest_jump << ", largest r step " << largest_r_jump);
+    MESSAGE("psi = " << psi << ": largest theta step " << largest_jump << " (a frame constant per segment: " << largest_naive_jump
+                     << "), largest r step " << largest_r_jump << ", largest |theta - psi| " << worst_theta);
     // A sample step is 2.5e-4 rad of arc; theta and r change smoothly by O(rho/R) of that
     // per step plus the chords' wobble, O(h) over a segment: 1e-3 is 80 times below a jump.
     CHECK(largest_jump < 1e-3);
+    // In a plane, Paulus's closest-point frame is continuous behind the front (the closest
+    // distance is); ahead, in the wedge of a vertex, it drops x_c and jumps (a twisted cut, next
+    // test case, makes it jump everywhere).
+    if (psi == 0.3) CHECK(largest_naive_jump > 10 * largest_jump);
     CHECK(largest_r_jump < 1e-4);
     // The chord lies up to R (1 - cos(h/2)) = 7.6e-4 inside the circle: a shift of the origin
     // by that much moves theta by up to about 7.6e-4 / rho = 0.015.
     CHECK(worst_theta < 0.03);
+  }
+}
+
+TEST_CASE("a straight front of a twisted cut: theta continuous where a frame constant per segment jumps by the twist") {
+  const kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 3});
+  // The front x = 0.5, z = 0.5 along y (from -0.5 to 1.5, beyond the box); behind it a strip
+  // 0.8 wide whose direction turns by phi(y) = 0.4 (y - 0.5) about y: 16 segments, each pair of
+  // neighbouring triangles' normals 0.05 rad apart.
+  const int n = 16;
+  kerf::TriangleSurface strip;
+  strip.vertices.resize(2 * (n + 1), 3);
+  for (int k = 0; k <= n; ++k) {
+    const double y = -0.5 + 2.0 * k / n, phi = 0.4 * (y - 0.5);
+    strip.vertices.row(2 * k) << 0.5, y, 0.5;
+    strip.vertices.row(2 * k + 1) << 0.5 - 0.8 * std::cos(phi), y, 0.5 - 0.8 * std::sin(phi);
+  }
+  strip.triangles.resize(2 * n, 3);
+  for (int k = 0; k < n; ++k) {
+    strip.triangles.row(2 * k) << 2 * k, 2 * k + 1, 2 * k + 2;
+    strip.triangles.row(2 * k + 1) << 2 * k + 1, 2 * k + 3, 2 * k + 2;
+  }
+  const kerf::CrackFronts fronts = fronts_of(mesh, {strip});
+  REQUIRE(fronts.polylines.size() == 1);
+  CHECK(fronts.length() == doctest::Approx(1.0).epsilon(1e-12));
+  const kerf::FrontPolyline& line = fronts.polylines[0];
+  for (const double psi : {0.5, 2.5, -2.0}) {
+    const double rho = 0.1;
+    double previous = 0.0, previous_naive = 0.0, largest = 0.0, largest_naive = 0.0;
+    const int samples = 2000;
+    for (int k = 0; k <= samples; ++k) {
+      const Eigen::Vector3d x(0.5 + rho * std::cos(psi), 0.02 + 0.96 * k / samples, 0.5 + rho * std::sin(psi));
+      const double theta = fronts.polar(x).theta;
+      // The segment whose closest point is nearest, with its own frame (Paulus).
+      double closest = 1e300, naive = 0.0;
+      for (const kerf::FrontSegment& s : line.segments) {
+        const Eigen::Vector3d e = s.end - s.start;
+        const Eigen::Vector3d foot = s.start + std::clamp((x - s.start).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
+        if ((x - foot).norm() >= closest - 1e-15) continue;
+        closest = (x - foot).norm();
+        naive = std::atan2((x - foot).dot(s.b), (x - foot).dot(s.a));
+      }
+      if (k > 0) {
+        largest = std::max(largest, std::abs(theta - previous));
+        largest_naive = std::max(largest_naive, std::abs(naive - previous_naive));
+      }
+      previous = theta;
+      previous_naive = naive;
+    }
+    MESSAGE("twisted cut, psi = " << psi << ": largest theta step " << largest << ", with a frame constant per segment " << largest_naive);
+    // A step is 4.8e-4 in y; theta turns with the frame at 0.4 rad per unit y (2e-4 per step):
+    // the interpolated frame stays below 1e-3; the constant one jumps by the 0.05 rad between
+    // neighbouring triangles' normals at every vertex.
+    CHECK(largest < 1e-3);
+    CHECK(largest_naive > 0.04);
   }
 }
