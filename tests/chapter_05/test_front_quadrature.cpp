@@ -37,16 +37,9 @@ struct CrossedTet {
     mesh.tets << 0, 1, 2, 3;
     // x in [-5, 0], z in [-5, 5] at y = 0; normal edge1 x edge2 = z x x = +y.
     const kerf::RectangleCut cut({-5, 0, -5}, {0, 0, 10}, {5, 0, 0});
-    const kerf::TriangleSurface surface = kerf::rectangle_surface(cut);
-    fronts = kerf::find_crack_fronts(mesh, kerf::CutSurfaces({surface}));
-    std::vector<kerf::CutTriangle> triangles;
-    for (int f = 0; f < 2; ++f) {
-      kerf::CutTriangle t;
-      for (int k = 0; k < 3; ++k) t.corners[static_cast<std::size_t>(k)] = surface.vertices.row(surface.triangles(f, k)).transpose();
-      t.triangle = f;
-      triangles.push_back(t);
-    }
-    pieces = kerf::split_tet_by_triangles(X, triangles);
+    const kerf::CutSurfaces cuts({kerf::rectangle_surface(cut)});
+    fronts = kerf::find_crack_fronts(mesh, cuts);
+    pieces = kerf::split_tet_by_triangles(X, cuts.triangles_meeting_tet(X));
   }
 };
 
@@ -68,13 +61,9 @@ const std::vector<Integrand>& integrands() {
   return list;
 }
 
+// The rule applied to f, with r and theta about the z-axis.
 double apply(const kerf::PieceQuadratureRule& rule, const Integrand& f) {
-  double sum = 0.0;
-  for (std::size_t q = 0; q < rule.points.size(); ++q) {
-    const Eigen::Vector3d& x = rule.points[q];
-    sum += rule.weights[q] * std::pow(std::hypot(x.x(), x.y()), f.alpha) * f.g(std::atan2(x.y(), x.x()));
-  }
-  return sum;
+  return kerf::integrate(rule, [&f](const Eigen::Vector3d& x) { return std::pow(std::hypot(x.x(), x.y()), f.alpha) * f.g(std::atan2(x.y(), x.x())); });
 }
 
 double reference(const Eigen::Matrix<double, 4, 3>& X, const Integrand& f, int points = 24) {

@@ -303,19 +303,15 @@ CrackFronts find_crack_fronts(const TetMesh& mesh, const CutSurfaces& cuts) {
     starting[pieces[k].start_key].push_back(static_cast<int>(k));
     ending[pieces[k].end_key].push_back(static_cast<int>(k));
   }
-  const auto successor = [&](int k) {
-    const int key = pieces[static_cast<std::size_t>(k)].end_key;
+  // The piece that continues piece k through its end (forward) or start (backward), -1 if the
+  // chain ends there (no piece, or a vertex where more than two front edges meet).
+  const auto next = [&](int k, bool forward) {
+    const Piece& piece = pieces[static_cast<std::size_t>(k)];
+    const int key = forward ? piece.end_key : piece.start_key;
     const auto s = starting.find(key);
     const auto e = ending.find(key);
-    if (s == starting.end() || s->second.size() != 1 || e->second.size() != 1) return -1;
-    return s->second[0];
-  };
-  const auto predecessor = [&](int k) {
-    const int key = pieces[static_cast<std::size_t>(k)].start_key;
-    const auto e = ending.find(key);
-    const auto s = starting.find(key);
-    if (e == ending.end() || e->second.size() != 1 || s->second.size() != 1) return -1;
-    return e->second[0];
+    if (s == starting.end() || e == ending.end() || s->second.size() != 1 || e->second.size() != 1) return -1;
+    return forward ? s->second[0] : e->second[0];
   };
   CrackFronts fronts;
   std::vector<char> used(pieces.size(), 0);
@@ -323,13 +319,13 @@ CrackFronts find_crack_fronts(const TetMesh& mesh, const CutSurfaces& cuts) {
     if (used[first]) continue;
     // Walk back to the start of the chain (or once round a loop).
     int start = static_cast<int>(first);
-    for (int back = predecessor(start); back >= 0 && back != static_cast<int>(first); back = predecessor(back)) start = back;
+    for (int back = next(start, false); back >= 0 && back != static_cast<int>(first); back = next(back, false)) start = back;
     FrontPolyline line;
     int k = start;
     do {
       used[static_cast<std::size_t>(k)] = 1;
       line.segments.push_back(pieces[static_cast<std::size_t>(k)].segment);
-      k = successor(k);
+      k = next(k, true);
     } while (k >= 0 && !used[static_cast<std::size_t>(k)]);
     line.closed = k == start;
     line.points.push_back(line.segments.front().start);
