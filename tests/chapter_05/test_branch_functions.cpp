@@ -64,7 +64,7 @@ TEST_CASE("the closed-form gradients of F_1..F_4 agree with central differences 
     ++tested;
   }
   CHECK(tested > 400);
-  INFO("largest relative difference " << worst);
+  MESSAGE("largest relative difference " << worst);
   CHECK(worst < 1e-6);
 }
 
@@ -131,7 +131,7 @@ TEST_CASE("the shifted functions vanish at their node and their gradient agrees 
       }
     }
   }
-  INFO("largest relative difference " << worst);
+  MESSAGE("largest relative difference " << worst);
   CHECK(worst < 1e-6);
 }
 
