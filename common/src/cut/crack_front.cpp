@@ -278,12 +278,13 @@ CrackFronts find_crack_fronts(const TetMesh& mesh, const CutSurfaces& cuts) {
     size[static_cast<std::size_t>(t)] = (high[static_cast<std::size_t>(t)] - low[static_cast<std::size_t>(t)]).norm();
   }
 
+  // Chain keys: surface s's vertex v is key_offset[s] + v; an end made by clipping (where the
+  // front leaves the mesh) gets a key of its own, from next_key on.
   std::vector<Piece> pieces;
-  int next_key = 0;
   std::vector<int> key_offset(static_cast<std::size_t>(cuts.num_surfaces()) + 1, 0);
   for (int s = 0; s < cuts.num_surfaces(); ++s)
     key_offset[static_cast<std::size_t>(s) + 1] = key_offset[static_cast<std::size_t>(s)] + static_cast<int>(cuts.surface(s).num_vertices());
-  next_key = key_offset.back();
+  int next_key = key_offset.back();
 
   for (int s = 0; s < cuts.num_surfaces(); ++s) {
     const TriangleSurface& surface = cuts.surface(s);
