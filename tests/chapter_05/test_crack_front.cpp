@@ -251,4 +251,20 @@ TEST_CASE("a straight front of a twisted cut: theta continuous where a frame con
     CHECK(largest < 1e-3);
     CHECK(largest_naive > 0.04);
   }
+  // The coordinates' gradients include the normal's turning along the front: central
+  // differences of x_a and x_b agree (step 1e-6 at r = 0.1: truncation ~1e-10).
+  double worst = 0.0;
+  for (int k = 0; k < 30; ++k) {
+    const double psi = -3.0 + 6.0 * k / 29.0;
+    const Eigen::Vector3d x(0.5 + 0.1 * std::cos(psi), 0.03 + 0.031 * k, 0.5 + 0.1 * std::sin(psi));
+    const kerf::FrontPolar p = fronts.polar(x);
+    for (int d = 0; d < 3; ++d) {
+      const Eigen::Vector3d dx = 1e-6 * Eigen::Vector3d::Unit(d);
+      const kerf::FrontPolar plus = fronts.polar(x + dx), minus = fronts.polar(x - dx);
+      worst = std::max(worst, std::abs((plus.x_a - minus.x_a) / 2e-6 - p.grad_x_a(d)));
+      worst = std::max(worst, std::abs((plus.x_b - minus.x_b) / 2e-6 - p.grad_x_b(d)));
+    }
+  }
+  MESSAGE("twisted cut: largest difference of grad x_a, grad x_b to central differences " << worst);
+  CHECK(worst < 1e-6);
 }

@@ -143,7 +143,8 @@ double CrackFronts::distance(const Eigen::Vector3d& x) const {
 FrontPolar CrackFronts::polar(const Eigen::Vector3d& x, int cut_side) const {
   if (polylines.empty()) throw std::logic_error("CrackFronts::polar: there is no front");
   FrontPolar best;
-  double best_distance = std::numeric_limits<double>::infinity();
+  double best_distance = std::numeric_limits<double>::infinity(), best_t = 0.0;
+  bool by_tangent = true; // the foot solves (x - gamma(t)) . c(t) = 0 (false: the fallback below)
   const auto consider = [&](int l, int k, double t) {
     const FrontPolyline& line = polylines[static_cast<std::size_t>(l)];
     const FrontSegment& s = line.segments[static_cast<std::size_t>(k)];
@@ -162,6 +163,7 @@ FrontPolar CrackFronts::polar(const Eigen::Vector3d& x, int cut_side) const {
     best.a = b.cross(c);
     best.polyline = l;
     best.segment = k;
+    best_t = t;
   };
   for (std::size_t l = 0; l < polylines.size(); ++l) {
     const FrontPolyline& line = polylines[l];
@@ -193,6 +195,7 @@ FrontPolar CrackFronts::polar(const Eigen::Vector3d& x, int cut_side) const {
   }
   if (best.polyline < 0) {
     // No foot (possible on a closed front far from it): the closest point of the nearest segment.
+    by_tangent = false;
     for (std::size_t l = 0; l < polylines.size(); ++l)
       for (std::size_t k = 0; k < polylines[l].segments.size(); ++k) {
         const FrontSegment& s = polylines[l].segments[k];
@@ -208,6 +211,40 @@ FrontPolar CrackFronts::polar(const Eigen::Vector3d& x, int cut_side) const {
   // -pi, so that the result does not depend on the sign of a zero.
   best.theta = best.x_b == 0.0 && best.x_a < 0.0 ? std::numbers::pi : std::atan2(best.x_b, best.x_a);
   if (cut_side != 0) best.theta = cut_side > 0 ? std::numbers::pi : -std::numbers::pi;
+
+  // The gradients of x_a and x_b. The foot parameter t(x) solves q = (x - gamma(t)) . c^(t) = 0
+  // with c^(t) = c0 + t (c1 - c0), so grad t = -c^ / (dq/dt), dq/dt = -e . c^ + y . (c1 - c0), and
+  //   grad x_a = a + (-e . a + y . da/dt) grad t,   grad x_b = b + (-e . b + y . db/dt) grad t.
+  // On a straight front (c1 = c0, b1 = b0) both corrections vanish: grad x_a = a, grad x_b = b.
+  best.grad_x_a = best.a;
+  best.grad_x_b = best.b;
+  if (by_tangent) {
+    const FrontPolyline& line = polylines[static_cast<std::size_t>(best.polyline)];
+    const std::size_t k = static_cast<std::size_t>(best.segment);
+    const Eigen::Vector3d e = line.segments[k].end - line.segments[k].start;
+    const Eigen::Vector3d dc_hat = line.tangents[k + 1] - line.tangents[k];
+    const Eigen::Vector3d c_hat = line.tangents[k] + best_t * dc_hat;
+    const double dq_dt = -e.dot(c_hat) + y.dot(dc_hat);
+    if (dq_dt != 0.0) {
+      const Eigen::Vector3d grad_t = -c_hat / dq_dt;
+      Eigen::Vector3d da = Eigen::Vector3d::Zero(), db = Eigen::Vector3d::Zero();
+      if (best_t >= 0.0 && best_t <= 1.0) {
+        // The interpolated frame's derivative (beyond an open end the frame is constant):
+        // c = c^ / |c^|, b = b~ / |b~| with b~ = b^ - (b^ . c) c, b^ = b0 + t (b1 - b0), a = b x c.
+        const double c_norm = c_hat.norm();
+        const Eigen::Vector3d& c = best.c;
+        const Eigen::Vector3d dc = (dc_hat - c.dot(dc_hat) * c) / c_norm;
+        const Eigen::Vector3d db_hat = line.normals[k + 1] - line.normals[k];
+        const Eigen::Vector3d b_hat = line.normals[k] + best_t * db_hat;
+        const Eigen::Vector3d b_tilde = b_hat - b_hat.dot(c) * c;
+        const Eigen::Vector3d db_tilde = db_hat - (db_hat.dot(c) + b_hat.dot(dc)) * c - b_hat.dot(c) * dc;
+        db = (db_tilde - best.b.dot(db_tilde) * best.b) / b_tilde.norm();
+        da = db.cross(c) + best.b.cross(dc);
+      }
+      best.grad_x_a += (-e.dot(best.a) + y.dot(da)) * grad_t;
+      best.grad_x_b += (-e.dot(best.b) + y.dot(db)) * grad_t;
+    }
+  }
   return best;
 }
 
@@ -241,12 +278,13 @@ CrackFronts find_crack_fronts(const TetMesh& mesh, const CutSurfaces& cuts) {
     size[static_cast<std::size_t>(t)] = (high[static_cast<std::size_t>(t)] - low[static_cast<std::size_t>(t)]).norm();
   }
 
+  // Chain keys: surface s's vertex v is key_offset[s] + v; an end made by clipping (where the
+  // front leaves the mesh) gets a key of its own, from next_key on.
   std::vector<Piece> pieces;
-  int next_key = 0;
   std::vector<int> key_offset(static_cast<std::size_t>(cuts.num_surfaces()) + 1, 0);
   for (int s = 0; s < cuts.num_surfaces(); ++s)
     key_offset[static_cast<std::size_t>(s) + 1] = key_offset[static_cast<std::size_t>(s)] + static_cast<int>(cuts.surface(s).num_vertices());
-  next_key = key_offset.back();
+  int next_key = key_offset.back();
 
   for (int s = 0; s < cuts.num_surfaces(); ++s) {
     const TriangleSurface& surface = cuts.surface(s);
@@ -303,19 +341,15 @@ CrackFronts find_crack_fronts(const TetMesh& mesh, const CutSurfaces& cuts) {
     starting[pieces[k].start_key].push_back(static_cast<int>(k));
     ending[pieces[k].end_key].push_back(static_cast<int>(k));
   }
-  const auto successor = [&](int k) {
-    const int key = pieces[static_cast<std::size_t>(k)].end_key;
+  // The piece that continues piece k through its end (forward) or start (backward), -1 if the
+  // chain ends there (no piece, or a vertex where more than two front edges meet).
+  const auto next = [&](int k, bool forward) {
+    const Piece& piece = pieces[static_cast<std::size_t>(k)];
+    const int key = forward ? piece.end_key : piece.start_key;
     const auto s = starting.find(key);
     const auto e = ending.find(key);
-    if (s == starting.end() || s->second.size() != 1 || e->second.size() != 1) return -1;
-    return s->second[0];
-  };
-  const auto predecessor = [&](int k) {
-    const int key = pieces[static_cast<std::size_t>(k)].start_key;
-    const auto e = ending.find(key);
-    const auto s = starting.find(key);
-    if (e == ending.end() || e->second.size() != 1 || s->second.size() != 1) return -1;
-    return e->second[0];
+    if (s == starting.end() || e == ending.end() || s->second.size() != 1 || e->second.size() != 1) return -1;
+    return forward ? s->second[0] : e->second[0];
   };
   CrackFronts fronts;
   std::vector<char> used(pieces.size(), 0);
@@ -323,13 +357,13 @@ CrackFronts find_crack_fronts(const TetMesh& mesh, const CutSurfaces& cuts) {
     if (used[first]) continue;
     // Walk back to the start of the chain (or once round a loop).
     int start = static_cast<int>(first);
-    for (int back = predecessor(start); back >= 0 && back != static_cast<int>(first); back = predecessor(back)) start = back;
+    for (int back = next(start, false); back >= 0 && back != static_cast<int>(first); back = next(back, false)) start = back;
     FrontPolyline line;
     int k = start;
     do {
       used[static_cast<std::size_t>(k)] = 1;
       line.segments.push_back(pieces[static_cast<std::size_t>(k)].segment);
-      k = successor(k);
+      k = next(k, true);
     } while (k >= 0 && !used[static_cast<std::size_t>(k)]);
     line.closed = k == start;
     line.points.push_back(line.segments.front().start);

@@ -30,7 +30,7 @@ BranchValues branch_functions(const FrontPolar& polar) {
   if (!(polar.r > 0.0)) return v; // on the front: F = 0, gradient unbounded, returned as 0
   v.F = branch_function_values(polar.r, polar.theta);
   const Eigen::Matrix<double, 4, 2> d = branch_function_frame_derivatives(polar.r, polar.theta);
-  v.dF_dx = d.col(0) * polar.a.transpose() + d.col(1) * polar.b.transpose();
+  v.dF_dx = d.col(0) * polar.grad_x_a.transpose() + d.col(1) * polar.grad_x_b.transpose();
   return v;
 }
 

@@ -33,7 +33,9 @@
 /// in the same region; they need a signed distance to an open surface, which is itself
 /// discontinuous beyond the front). At an open end of a polyline (where the front leaves the
 /// mesh) the first and last segments are extended straight, so a point just beyond the end still
-/// has a foot. For a straight front all this is exactly Paulus's closest-point frame.
+/// has a foot. For a straight front all this is exactly Paulus's closest-point frame. The
+/// gradients of x_a and x_b (FrontPolar::grad_x_a, grad_x_b) follow the foot and the frame as
+/// they move with x, so that the branch functions' gradients are those of the functions used.
 #pragma once
 
 #include "kerf/cut/cut_surfaces.hpp"
@@ -70,6 +72,11 @@ struct FrontPolar {
   double x_a = 0.0, x_b = 0.0;    ///< the coordinates of x - foot along a and b (m)
   Eigen::Vector3d foot{0, 0, 0};  ///< the point of the front the coordinates are taken from (m)
   Eigen::Vector3d a{1, 0, 0}, b{0, 1, 0}, c{0, 0, 1}; ///< the frame at the foot, right-handed
+  /// grad x_a and grad x_b in x, the foot's and the frame's motion included: a and b on a
+  /// straight front; on a polyline they differ by the frame's turning (up to half the angle
+  /// between neighbouring segments, plus O(r / R) for the curvature). Where no foot is found
+  /// (the closest-point fallback far from a closed front), a and b.
+  Eigen::Vector3d grad_x_a{1, 0, 0}, grad_x_b{0, 1, 0};
   int polyline = -1;              ///< which front (-1: there is no front)
   int segment = -1;               ///< which segment of it
 };
