@@ -215,4 +215,39 @@ PieceQuadratureRule front_collapsed_rule(const Eigen::Matrix<double, 4, 3>& X, c
   return rule;
 }
 
+namespace {
+
+void append_graded_subtet(const Eigen::Matrix<double, 4, 3>& T, const CrackFronts& fronts, const TetQuadratureRule& gauss, int depth,
+                          PieceQuadratureRule& rule) {
+  const Eigen::Vector3d centre = T.colwise().mean().transpose();
+  double radius = 0.0, diameter = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    radius = std::max(radius, (T.row(i).transpose() - centre).norm());
+    for (int j = i + 1; j < 4; ++j) diameter = std::max(diameter, (T.row(i) - T.row(j)).norm());
+  }
+  if (depth > 0 && diameter > fronts.distance(centre) - radius) {
+    for (const Eigen::Matrix<double, 4, 3>& child : refine_tet(T)) append_graded_subtet(child, fronts, gauss, depth - 1, rule);
+    return;
+  }
+  Eigen::Matrix3d J;
+  for (int c = 0; c < 3; ++c) J.col(c) = (T.row(c + 1) - T.row(0)).transpose();
+  const double volume_scale = std::abs(J.determinant());
+  for (std::size_t q = 0; q < gauss.points.size(); ++q) {
+    rule.points.push_back(T.row(0).transpose() + J * gauss.points[q]);
+    rule.weights.push_back(gauss.weights[q] * volume_scale);
+  }
+}
+
+} // namespace
+
+PieceQuadratureRule near_front_graded_rule(const TetPieces& pieces, int piece, const CrackFronts& fronts, int degree, int max_depth) {
+  if (max_depth < 0) throw std::invalid_argument("near_front_graded_rule: max_depth must be >= 0");
+  const TetQuadratureRule gauss = tet_quadrature_rule(degree);
+  PieceQuadratureRule rule;
+  for (const int c : pieces.pieces[static_cast<std::size_t>(piece)].cells)
+    for (const Eigen::Matrix<double, 4, 3>& T : convex_cell_tetrahedra(pieces.cells[static_cast<std::size_t>(c)]))
+      append_graded_subtet(T, fronts, gauss, max_depth, rule);
+  return rule;
+}
+
 } // namespace kerf

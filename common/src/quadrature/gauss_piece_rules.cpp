@@ -27,7 +27,8 @@ void append_mapped_rule(const TetQuadratureRule& reference, const Eigen::Matrix<
   }
 }
 
-// The 8 children of T by its edges' midpoints (Bey's regular refinement): all of volume V / 8.
+} // namespace
+
 std::vector<Eigen::Matrix<double, 4, 3>> refine_tet(const Eigen::Matrix<double, 4, 3>& T) {
   const auto mid = [&T](int i, int j) { return Eigen::RowVector3d(0.5 * (T.row(i) + T.row(j))); };
   const Eigen::RowVector3d x0 = T.row(0), x1 = T.row(1), x2 = T.row(2), x3 = T.row(3);
@@ -48,8 +49,6 @@ std::vector<Eigen::Matrix<double, 4, 3>> refine_tet(const Eigen::Matrix<double, 
   }
   return result;
 }
-
-} // namespace
 
 PieceQuadratureRule volume_ratio_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece, int degree) {
   PieceQuadratureRule rule;

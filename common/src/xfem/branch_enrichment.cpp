@@ -66,20 +66,29 @@ BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& p
   if (!(radius >= 0.0) || !std::isfinite(radius))
     throw std::invalid_argument("make_branch_enrichment: the enrichment radius must be finite and >= 0");
   const Eigen::Index V = mesh.num_nodes(), T = mesh.num_tets();
-  const int n = mesh.nodes_per_tet();
   BranchEnrichment result;
   result.front_tet.assign(static_cast<std::size_t>(T), 0);
   std::vector<char> branch(static_cast<std::size_t>(V), 0);
+  // Only corners carry branch functions, on a Tet10 too, where their partition of unity is the
+  // corners' linear hats lambda_v (the Tet4 shape functions), not the Tet10's: the functions obey
+  // x_b F_1 + x_a F_3 - x_b F_4 = 0 and x_b F_2 - x_b F_3 - x_a F_4 = 0 (from r F_3 = x_b F_1,
+  // r F_4 = x_b F_2), so with quadratic shape functions, which hold lambda_v x_a and lambda_v x_b,
+  // the products N_i F_l of a fully enriched one-ring are linearly dependent (two null vectors
+  // per component and inner vertex: the stiffness is singular). With linear hats they are not.
+  std::vector<char> corner(static_cast<std::size_t>(V), 0);
+  for (Eigen::Index t = 0; t < T; ++t)
+    for (int a = 0; a < 4; ++a) corner[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
   // The tets the front passes through: only tets a cut triangle meets can hold it.
   if (!fronts.empty())
     for (const int t : pieces.entry_tet)
       if (!front_in_tet(fronts, tet_corners(mesh, t)).empty()) {
         result.front_tet[static_cast<std::size_t>(t)] = 1;
-        for (int a = 0; a < n; ++a) branch[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
+        for (int a = 0; a < 4; ++a) branch[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
       }
   if (rule == TipEnrichmentRule::geometric && !fronts.empty())
     for (Eigen::Index i = 0; i < V; ++i)
-      if (fronts.distance(mesh.nodes.row(i).transpose()) <= radius) branch[static_cast<std::size_t>(i)] = 1;
+      if (corner[static_cast<std::size_t>(i)] && fronts.distance(mesh.nodes.row(i).transpose()) <= radius)
+        branch[static_cast<std::size_t>(i)] = 1;
 
   result.sign = without_nodes(make_surface_enrichment(mesh, pieces), branch);
   result.kind.assign(static_cast<std::size_t>(V), NodeEnrichmentKind::none);
@@ -103,9 +112,9 @@ BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& p
   result.blending.assign(static_cast<std::size_t>(T), 0);
   for (Eigen::Index t = 0; t < T; ++t) {
     int count = 0;
-    for (int a = 0; a < n; ++a) count += branch[static_cast<std::size_t>(mesh.tets(t, a))];
+    for (int a = 0; a < 4; ++a) count += branch[static_cast<std::size_t>(mesh.tets(t, a))];
     result.has_branch_nodes[static_cast<std::size_t>(t)] = count > 0;
-    result.blending[static_cast<std::size_t>(t)] = count > 0 && count < n;
+    result.blending[static_cast<std::size_t>(t)] = count > 0 && count < 4;
   }
   return result;
 }

@@ -59,4 +59,14 @@ namespace kerf {
 PieceQuadratureRule front_collapsed_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece,
                                          const CrackFronts& fronts, int n);
 
+/// A rule for a piece of a tet near the front that the front does not cross (a blending tet,
+/// or a tet behind the front with branch nodes): the functions are smooth there, but at a
+/// distance d from the front their derivatives grow like d^-1/2 - k, steep for Gauss across a
+/// tet of size h > d. So each sub-tet of the piece's cells is refined (refine_tet) while it is
+/// larger than its distance to the front, at most `max_depth` times, and gets the Gauss rule of
+/// `degree` (a geometric grading towards the front, as for the collapsed rule's near edges).
+/// @param pieces    the tet's pieces (split_tet_by_triangles(X, {}) for an uncut tet)
+/// @param max_depth >= 0; 0 gives subtet_rule
+PieceQuadratureRule near_front_graded_rule(const TetPieces& pieces, int piece, const CrackFronts& fronts, int degree, int max_depth);
+
 } // namespace kerf

@@ -6,6 +6,10 @@
 /// last row of enriched nodes. Chapter 5 gives the nodes near the front the four branch functions
 /// of branch_functions.hpp (12 extra DOFs each) and keeps chapter 4's enrichment for the others.
 ///
+/// Only corner nodes carry branch functions, with the corners' linear hats as their partition of
+/// unity, on a Tet10 too: with the Tet10's quadratic shape functions the products would be
+/// linearly dependent (branch_enrichment.cpp derives the two identities that make them so).
+///
 /// The two rules for "near the front":
 /// - **topological** (Paulus section 3.3): a node is branch enriched if it belongs to a tet the
 ///   front passes through. Paulus says "a partially cut element"; Kerf takes every tet that
@@ -62,8 +66,8 @@ struct BranchEnrichment {
   /// (CrackFronts::polar's cut_side), 0 for the others. Only branch nodes are looked at.
   std::vector<int> cut_side;
   std::vector<char> front_tet;          ///< #T: a piece of the front lies in it (front_in_tet)
-  std::vector<char> has_branch_nodes;   ///< #T: some node of it is branch enriched
-  std::vector<char> blending;           ///< #T: some, but not all, of its nodes are branch enriched
+  std::vector<char> has_branch_nodes;   ///< #T: some corner of it is branch enriched
+  std::vector<char> blending;           ///< #T: some, but not all, of its corners are branch enriched
   /// Chapter 4's enrichment with the branch nodes' enrichments taken out (renumbered, `active`
   /// pointing to the remaining ones): what the model uses for the sign DOFs.
   SurfaceEnrichment sign;
