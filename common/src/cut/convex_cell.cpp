@@ -60,6 +60,14 @@ double convex_cell_volume(const ConvexCell& cell) {
   return sum / 3.0;
 }
 
+Eigen::Vector3d convex_cell_inner_point(const ConvexCell& cell) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (const CellFace& face : cell.faces)
+    for (const Eigen::Vector3d& y : face.polygon) sum += y, ++count;
+  return count > 0 ? Eigen::Vector3d(sum / count) : sum;
+}
+
 std::vector<Eigen::Matrix<double, 4, 3>> convex_cell_tetrahedra(const ConvexCell& cell) {
   std::vector<Eigen::Matrix<double, 4, 3>> tets;
   if (cell.faces.empty()) return tets;

@@ -55,6 +55,12 @@ Eigen::Matrix<double, 10, 1> piece_moments(const PieceQuadratureRule& rule) {
   return m;
 }
 
+double integrate(const PieceQuadratureRule& rule, const std::function<double(const Eigen::Vector3d&)>& f) {
+  double sum = 0.0;
+  for (std::size_t q = 0; q < rule.points.size(); ++q) sum += rule.weights[q] * f(rule.points[q]);
+  return sum;
+}
+
 int count_points(const PieceQuadratureRule& rule) {
   int n = 0;
   for (double w : rule.weights) n += w != 0.0;

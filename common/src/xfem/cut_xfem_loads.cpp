@@ -12,21 +12,18 @@ namespace kerf {
 
 namespace {
 
-// int over a convex polygon of N_a(x) t dA for the n shape functions of tet t: fan triangles,
-// each with the three-point rule at its edge midpoints (weights area / 3, exact to degree 2).
-Eigen::MatrixX3d polygon_shape_loads(const CutXfemModel& model, Eigen::Index t, const std::vector<Eigen::Vector3d>& polygon,
-                                     const Eigen::Vector3d& traction) {
-  const int n = model.mesh().nodes_per_tet();
-  Eigen::MatrixX3d load = Eigen::MatrixX3d::Zero(n, 3);
+// The rule over a convex polygon: fan triangles, each with the three-point rule at its edge
+// midpoints (weights area / 3, exact to degree 2: a Tet10's shape functions on a face).
+template <typename AtPoint>
+void for_each_polygon_point(const std::vector<Eigen::Vector3d>& polygon, AtPoint at_point) {
   for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
     const Eigen::Vector3d& a = polygon[0];
     const Eigen::Vector3d& b = polygon[k];
     const Eigen::Vector3d& c = polygon[k + 1];
     const double area = 0.5 * (b - a).cross(c - a).norm();
     for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.5 * (a + b)), Eigen::Vector3d(0.5 * (b + c)), Eigen::Vector3d(0.5 * (c + a))})
-      load += (area / 3.0) * model.shape_values(t, x) * traction.transpose();
+      at_point(x, area / 3.0);
   }
-  return load;
 }
 
 } // namespace
@@ -66,13 +63,17 @@ Eigen::VectorXd cut_xfem_scene_loads(const Scene& scene, const CutXfemModel& mod
           for (const PieceBoundaryPolygon& b : tp.pieces[static_cast<std::size_t>(p)].boundary)
             if (b.origin.kind == FaceOrigin::Kind::tet_face && b.origin.index == local_face) polygons.push_back(b.polygon);
         }
-        for (const std::vector<Eigen::Vector3d>& polygon : polygons) {
-          const Eigen::MatrixX3d load = polygon_shape_loads(model, t, polygon, traction);
-          for (int a = 0; a < mesh.nodes_per_tet(); ++a) {
-            const int node = model.phantom_node(t, p, a);
-            if (node >= N) f.segment<3>(3 * node) += load.row(a).transpose();
-          }
-        }
+        // int N_a t dA on the enrichment rows, and the branch functions' int N_a (F_l - F_l(x_a)) t dA
+        // (Paulus eq. 7; the edge-midpoint rule is not exact for them: they are no polynomials).
+        for (const std::vector<Eigen::Vector3d>& polygon : polygons)
+          for_each_polygon_point(polygon, [&](const Eigen::Vector3d& x, double weight) {
+            const Eigen::VectorXd N_x = model.shape_values(t, x);
+            for (int a = 0; a < mesh.nodes_per_tet(); ++a) {
+              const int node = model.phantom_node(t, p, a);
+              if (node >= N) f.segment<3>(3 * node) += weight * N_x[a] * traction;
+            }
+            for (const auto& [node, value] : model.branch_values_at(t, p, x)) f.segment<3>(3 * node) += weight * value * traction;
+          });
       }
     }
   }

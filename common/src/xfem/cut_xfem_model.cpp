@@ -6,11 +6,15 @@
 #include "kerf/fem/rigid_motion_check.hpp"
 #include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/fem/tet_stiffness.hpp"
+#include "kerf/quadrature/front_quadrature.hpp"
+#include "kerf/quadrature/gauss_piece_rules.hpp"
+#include "kerf/xfem/branch_functions.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace kerf {
 
@@ -28,16 +32,22 @@ Eigen::Matrix3d corner_jacobian(const Corners& X) {
 } // namespace
 
 CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
-                           const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule)
-    : mesh_(mesh), material_(material), pieces_(pieces), enrichment_(enrichment) {
+                           const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule, const CrackTipFunctions* tip)
+    : mesh_(mesh), material_(material), pieces_(pieces), enrichment_(enrichment), tip_(tip) {
   const int n = mesh.nodes_per_tet();
   const Eigen::Index T = mesh.num_tets();
   const Eigen::Index N = mesh.num_nodes();
   const TetQuadratureRule standard = tet_quadrature_rule(n == 4 ? 1 : 2);
   const int degree = stiffness_and_load_degree(mesh.order());
+  if (tip && &tip->enrichment.sign != &enrichment)
+    throw std::invalid_argument("CutXfemModel: with crack-tip functions, the enrichment must be their sign enrichment");
 
-  // The enrichments acting in each tet, which become its extra slots.
+  // The enrichments acting in each tet, which become its extra slots, then its branch nodes'
+  // four functions each.
   std::vector<std::vector<int>> extra(static_cast<std::size_t>(T));
+  first_branch_slot_.assign(static_cast<std::size_t>(T), -1);
+  branch_local_nodes_.assign(static_cast<std::size_t>(T), {});
+  branch_nodal_values_.assign(static_cast<std::size_t>(T), {});
   int width = n;
   for (Eigen::Index t = 0; t < T; ++t) {
     std::vector<int>& list = extra[static_cast<std::size_t>(t)];
@@ -45,7 +55,28 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       if (k >= 0) list.push_back(k);
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    width = std::max(width, n + static_cast<int>(list.size()));
+    int slots = n + static_cast<int>(list.size());
+    if (tip && tip->enrichment.has_branch_nodes[static_cast<std::size_t>(t)]) {
+      first_branch_slot_[static_cast<std::size_t>(t)] = slots;
+      for (int a = 0; a < 4; ++a)
+        if (tip->enrichment.branch_slot[static_cast<std::size_t>(mesh.tets(t, a))] >= 0) branch_local_nodes_[static_cast<std::size_t>(t)].push_back(a);
+      slots += 4 * static_cast<int>(branch_local_nodes_[static_cast<std::size_t>(t)].size());
+      // F at the tet's nodes for the shift: a branch corner's own value (its cut side decided),
+      // every other node's from its position, the same in every tet that shares it.
+      Eigen::Matrix<double, 4, Eigen::Dynamic>& F_nodes = branch_nodal_values_[static_cast<std::size_t>(t)];
+      F_nodes.resize(4, n);
+      for (int a = 0; a < n; ++a) {
+        const int node = mesh.tets(t, a);
+        const int k = tip->enrichment.branch_slot[static_cast<std::size_t>(node)];
+        if (k >= 0) {
+          F_nodes.col(a) = tip->enrichment.node_values[static_cast<std::size_t>(k)];
+        } else {
+          const FrontPolar polar = tip->fronts.polar(mesh.nodes.row(node).transpose());
+          F_nodes.col(a) = branch_function_values(polar.r, polar.theta);
+        }
+      }
+    }
+    width = std::max(width, slots);
   }
   slots_ = TetMatrix::Constant(T, width, -1);
   piece_data_.assign(static_cast<std::size_t>(T), {});
@@ -54,8 +85,14 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
   double force_norm_squared = 0.0;
   for (Eigen::Index t = 0; t < T; ++t) {
     const std::vector<int>& list = extra[static_cast<std::size_t>(t)];
+    const std::vector<int>& branch_nodes = branch_local_nodes_[static_cast<std::size_t>(t)];
     for (int a = 0; a < n; ++a) slots_(t, a) = mesh.tets(t, a);
     for (std::size_t k = 0; k < list.size(); ++k) slots_(t, n + static_cast<int>(k)) = static_cast<int>(N) + list[k];
+    for (std::size_t j = 0; j < branch_nodes.size(); ++j) {
+      const int k = tip->enrichment.branch_slot[static_cast<std::size_t>(mesh.tets(t, branch_nodes[j]))];
+      for (int l = 0; l < 4; ++l)
+        slots_(t, first_branch_slot_[static_cast<std::size_t>(t)] + 4 * static_cast<int>(j) + l) = static_cast<int>(branch_dof_node(k)) + l;
+    }
 
     const Corners X = tet_corners(mesh, t);
     const Eigen::Matrix3d J = corner_jacobian(X);
@@ -74,37 +111,80 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       }
       return point;
     };
-    const auto standard_points = [&]() {
-      std::vector<Point> points;
-      for (std::size_t q = 0; q < standard.points.size(); ++q)
-        points.push_back(point_at(X.row(0).transpose() + J * standard.points[q], standard.weights[q] * std::abs(det)));
-      return points;
+    const auto rule_points = [&](const auto& points, const auto& weights, double scale, bool reference) {
+      std::vector<Point> result;
+      for (std::size_t q = 0; q < points.size(); ++q)
+        result.push_back(point_at(reference ? Eigen::Vector3d(X.row(0).transpose() + J * points[q]) : Eigen::Vector3d(points[q]),
+                                  weights[q] * scale));
+      return result;
     };
+    const auto standard_points = [&]() { return rule_points(standard.points, standard.weights, std::abs(det), true); };
 
     const std::vector<int>& active = enrichment.active[static_cast<std::size_t>(t)];
     const int np = pieces.num_pieces(t);
+    const int e = pieces.entry[static_cast<std::size_t>(t)];
     const auto slot_of = [&](int a, int p) {
       const int k = active.empty() ? -1 : active[static_cast<std::size_t>(a * np + p)];
       if (k < 0) return -1;
       return n + static_cast<int>(std::lower_bound(list.begin(), list.end(), k) - list.begin());
     };
+    const auto new_piece = [&](int p, std::vector<Point> points) {
+      Piece piece{std::vector<int>(static_cast<std::size_t>(n)), std::move(points), {}, {}, 0};
+      for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, p);
+      return piece;
+    };
     std::vector<Piece> data;
-    if (list.empty()) {
-      whole_[static_cast<std::size_t>(t)] = {std::vector<int>(static_cast<std::size_t>(n), -1), standard_points()};
+    if (!branch_nodes.empty()) {
+      // A tet with branch nodes: every piece (or the whole tet) by a rule for non-polynomials.
+      const bool front_tet = tip->enrichment.front_tet[static_cast<std::size_t>(t)] != 0;
+      const int front_points = tip->front_points > 0 ? tip->front_points : (n == 4 ? 4 : 6);
+      if (e < 0) {
+        const TetPieces whole = split_tet_by_triangles(X, {});
+        const PieceQuadratureRule r = near_front_graded_rule(whole, 0, tip->fronts, tip->blending_degree, tip->blending_depth);
+        data.push_back(new_piece(0, rule_points(r.points, r.weights, 1.0, false)));
+      } else {
+        const TetPieces& tet_pieces = pieces.tets[static_cast<std::size_t>(e)];
+        for (int p = 0; p < np; ++p) {
+          PieceQuadratureRule r;
+          if (front_tet && tip->front_rule == FrontRule::collapsed)
+            r = front_collapsed_rule(X, tet_pieces, p, tip->fronts, front_points);
+          else if (front_tet)
+            r = refined_subtet_rule(tet_pieces, p, 2 * front_points - 1, 1);
+          else
+            r = near_front_graded_rule(tet_pieces, p, tip->fronts, tip->blending_degree, tip->blending_depth);
+          Piece piece = new_piece(p, rule_points(r.points, r.weights, 1.0, false));
+          // The side of the cut the piece lies on, where all its cut polygons agree: behind the
+          // front, theta's sign is taken from it (branch_functions_at).
+          for (const PieceBoundaryPolygon& b : tet_pieces.pieces[static_cast<std::size_t>(p)].boundary)
+            if (b.on_cut) piece.side = (piece.side == 0 || piece.side == b.cut_side) ? b.cut_side : 2;
+          if (piece.side == 2 || front_tet) piece.side = 0;
+          data.push_back(std::move(piece));
+        }
+      }
+      for (Piece& piece : data) {
+        const Eigen::Index m = static_cast<Eigen::Index>(piece.points.size());
+        const Eigen::Index s = 4 * static_cast<Eigen::Index>(branch_nodes.size());
+        piece.branch_value.resize(m, s);
+        piece.branch_gradient.resize(m, 3 * s);
+        for (Eigen::Index q = 0; q < m; ++q) {
+          const Point& point = piece.points[static_cast<std::size_t>(q)];
+          Eigen::Vector3d x = Eigen::Vector3d::Zero();
+          for (int a = 0; a < n; ++a) x += point.N[a] * mesh.nodes.row(mesh.tets(t, a)).transpose();
+          const Eigen::Matrix<double, 4, Eigen::Dynamic> values = branch_functions_at(t, x, piece.side);
+          piece.branch_value.row(q) = values.row(0);
+          for (Eigen::Index j = 0; j < s; ++j) piece.branch_gradient.row(q).segment<3>(3 * j) = values.col(j).tail<3>().transpose();
+        }
+      }
+    } else if (list.empty()) {
+      whole_[static_cast<std::size_t>(t)] = {std::vector<int>(static_cast<std::size_t>(n), -1), standard_points(), {}, {}, 0};
     } else if (np == 1) {
       // One piece, the whole tet, on which some enrichment is 1: the tet's own rule.
-      Piece piece{std::vector<int>(static_cast<std::size_t>(n)), standard_points()};
-      for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, 0);
-      data.push_back(std::move(piece));
+      data.push_back(new_piece(0, standard_points()));
     } else {
-      const TetPieces& tet_pieces = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
+      const TetPieces& tet_pieces = pieces.tets[static_cast<std::size_t>(e)];
       for (int p = 0; p < np; ++p) {
-        Piece piece;
-        piece.enrichment_slot.resize(static_cast<std::size_t>(n));
-        for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, p);
         const PieceQuadratureRule r = rule(X, tet_pieces, p, degree);
-        for (std::size_t q = 0; q < r.points.size(); ++q) piece.points.push_back(point_at(r.points[q], r.weights[q]));
-        data.push_back(std::move(piece));
+        data.push_back(new_piece(p, rule_points(r.points, r.weights, 1.0, false)));
       }
     }
     piece_data_[static_cast<std::size_t>(t)] = std::move(data);
@@ -130,6 +210,68 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
     }
   }
   position_force_norm_ = std::sqrt(force_norm_squared);
+}
+
+Eigen::Matrix<double, 4, Eigen::Dynamic> CutXfemModel::branch_functions_at(Eigen::Index t, const Eigen::Vector3d& x, int side) const {
+  const std::vector<int>& branch_nodes = branch_local_nodes_[static_cast<std::size_t>(t)];
+  Eigen::Matrix<double, 4, Eigen::Dynamic> result(4, 4 * static_cast<Eigen::Index>(branch_nodes.size()));
+  FrontPolar polar = tip_->fronts.polar(x);
+  // Behind the front (x_a < 0) theta = +-pi is the cut; where the cut is curved, the frame's
+  // half-plane theta = +-pi is not the cut itself, and a point of a piece above the cut can have
+  // x_b < 0. Reflecting b there puts F_1's jump on the cut the pieces follow (notes 5.3, "curved
+  // or kinked fronts"); on a planar cut the reflection never happens.
+  // A point on the cut itself (a vertex of a piece, |x_b| at round-off) takes its side's value,
+  // theta = side * pi (F_1 is two-valued there).
+  if (side != 0 && polar.x_a < 0.0 && std::abs(polar.x_b) <= 1e-10 * polar.r) {
+    polar.x_b = 0.0;
+    polar.theta = side * M_PI;
+  } else if (side != 0 && polar.x_a < 0.0 && polar.x_b * side < 0.0) {
+    polar.x_b = -polar.x_b;
+    polar.theta = -polar.theta;
+    polar.b = -polar.b;
+  }
+  const BranchValues at_x = branch_functions(polar);
+  const Corners X = tet_corners(mesh_, t);
+  const Eigen::Matrix3d J_inverse = corner_jacobian(X).inverse();
+  const Eigen::Vector3d xi = J_inverse * (x - X.row(0).transpose());
+  // The partition of unity of the branch functions is the corners' linear hats lambda_v, on a
+  // Tet10 too (branch_enrichment.hpp says why its own shape functions would be singular). The
+  // shift is the element's nodal interpolant of lambda_v F_l,
+  //   phi_{v,l} = lambda_v F_l - sum_i N_i lambda_v(x_i) F_l(x_i),
+  // which vanishes at every node (u_i stays the field there) and spans, with the N_i, what
+  // lambda_v F_l does. On a Tet4 it is Paulus's N_v (F_l - F_l(x_v)), shifted; on a Tet10,
+  // lambda_v(x_i) is 1 at v, 1/2 at the midpoints of v's edges and 0 elsewhere.
+  const Eigen::Vector4d lambda = tet4_shape(xi);
+  const Eigen::Matrix<double, 4, 3> grad_lambda = tet4_shape_gradients() * J_inverse;
+  Eigen::VectorXd N;
+  Eigen::MatrixX3d G;
+  if (mesh_.order() == 1) {
+    N = lambda;
+    G = grad_lambda;
+  } else {
+    N = tet10_shape(xi);
+    G = tet10_shape_gradients(xi) * J_inverse;
+  }
+  const Eigen::Matrix<double, 4, Eigen::Dynamic>& F_nodes = branch_nodal_values_[static_cast<std::size_t>(t)];
+  for (std::size_t j = 0; j < branch_nodes.size(); ++j) {
+    const int v = branch_nodes[j];
+    // sum_i N_i lambda_v(x_i) F(x_i) and its gradient.
+    Eigen::Vector4d shift = N[v] * F_nodes.col(v);
+    Eigen::Matrix<double, 4, 3> grad_shift = F_nodes.col(v) * G.row(v);
+    if (mesh_.order() == 2)
+      for (int e = 0; e < 6; ++e)
+        if (tet_edge_corners[e][0] == v || tet_edge_corners[e][1] == v) {
+          shift += 0.5 * N[4 + e] * F_nodes.col(4 + e);
+          grad_shift += 0.5 * F_nodes.col(4 + e) * G.row(4 + e);
+        }
+    for (int l = 0; l < 4; ++l) {
+      const Eigen::Index column = 4 * static_cast<Eigen::Index>(j) + l;
+      result(0, column) = lambda[v] * at_x.F[l] - shift[l];
+      result.block<3, 1>(1, column) =
+          (at_x.F[l] * grad_lambda.row(v) + lambda[v] * at_x.dF_dx.row(l) - grad_shift.row(l)).transpose();
+    }
+  }
+  return result;
 }
 
 std::span<const CutXfemModel::Piece> CutXfemModel::integrated_pieces(Eigen::Index t) const {
@@ -230,12 +372,48 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
   if (assembler) assembler->add_element_matrix(t, K_e, *rhs_free);
 }
 
+void CutXfemModel::assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, Eigen::VectorXd& f_int,
+                                       SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
+  if (corotated)
+    throw std::logic_error("corotational XFEM with crack-tip functions is not implemented: use the linear model");
+  const int n = mesh_.nodes_per_tet();
+  const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
+  int slots = first_branch;
+  while (slots < slots_.cols() && slots_(t, slots) >= 0) ++slots;
+  const double mu = material_.mu(), lambda = material_.lambda();
+
+  // At each point, one gradient per slot: the phantom element's G_a on node a's slot and on the
+  // slot of the sign enrichment active there, and each branch function's own gradient. The
+  // stiffness is then eq. (30) over all of them, K_e = sum_q w_q B_q^T C B_q.
+  Eigen::MatrixXd K_e = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
+  Eigen::MatrixX3d g(slots, 3);
+  for (const Piece& piece : integrated_pieces(t))
+    for (std::size_t q = 0; q < piece.points.size(); ++q) {
+      const Point& point = piece.points[q];
+      g.setZero();
+      for (int a = 0; a < n; ++a) {
+        g.row(a) += point.G.row(a);
+        const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
+        if (s >= 0) g.row(s) += point.G.row(a);
+      }
+      for (int j = 0; first_branch + j < slots; ++j)
+        g.row(first_branch + j) = piece.branch_gradient.row(static_cast<Eigen::Index>(q)).segment<3>(3 * j);
+      add_stiffness_integrand(g, point.weight, mu, lambda, K_e);
+    }
+  Eigen::VectorXd u_e(3 * slots);
+  for (int s = 0; s < slots; ++s) u_e.segment<3>(3 * s) = u.segment<3>(3 * slots_(t, s));
+  const Eigen::VectorXd f_e = K_e * u_e;
+  for (int s = 0; s < slots; ++s) f_int.segment<3>(3 * slots_(t, s)) += f_e.segment<3>(3 * s);
+  if (assembler) assembler->add_element_matrix(t, K_e, *rhs_free);
+}
+
 CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                                             Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
   CorotationStatistics stats;
   f_int = Eigen::VectorXd::Zero(3 * num_dof_nodes());
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
-    if (mesh_.order() == 1) assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
+    if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0) assemble_branch_tet(t, u, true, f_int, assembler, rhs_free);
+    else if (mesh_.order() == 1) assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
     else assemble_tet<10>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
   }
   return stats;
@@ -286,7 +464,9 @@ void CutXfemModel::assemble_linear_stiffness(SparseAssembler& assembler, Eigen::
   Eigen::VectorXd f_int = zero;
   CorotationStatistics unused;
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
-    if (mesh_.order() == 1)
+    if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0)
+      assemble_branch_tet(t, zero, false, f_int, &assembler, &rhs_free);
+    else if (mesh_.order() == 1)
       assemble_tet<4>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused);
     else
       assemble_tet<10>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused);
@@ -297,16 +477,37 @@ Eigen::VectorXd CutXfemModel::gravity_load(double density, const Eigen::Vector3d
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * num_dof_nodes());
   const int n = mesh_.nodes_per_tet();
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
     for (const Piece& piece : integrated_pieces(t))
-      for (const Point& point : piece.points)
+      for (std::size_t q = 0; q < piece.points.size(); ++q) {
+        const Point& point = piece.points[q];
         for (int a = 0; a < n; ++a) {
           const Eigen::Vector3d load = point.weight * density * point.N[a] * g;
           f.segment<3>(3 * mesh_.tets(t, a)) += load;
           const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
           if (s >= 0) f.segment<3>(3 * slots_(t, s)) += load;
         }
+        // The branch rows too (Paulus section 4.2 drops them: wrong for gravity, notes 5.4).
+        for (Eigen::Index j = 0; j < piece.branch_value.cols(); ++j)
+          f.segment<3>(3 * slots_(t, first_branch + static_cast<int>(j))) +=
+              point.weight * density * piece.branch_value(static_cast<Eigen::Index>(q), j) * g;
+      }
   }
   return f;
+}
+
+std::vector<std::pair<int, double>> CutXfemModel::branch_values_at(Eigen::Index t, int p, const Eigen::Vector3d& x) const {
+  if (first_branch_slot_[static_cast<std::size_t>(t)] < 0) return {};
+  return branch_values_on_side(t, x, integrated_pieces(t)[static_cast<std::size_t>(p)].side);
+}
+
+std::vector<std::pair<int, double>> CutXfemModel::branch_values_on_side(Eigen::Index t, const Eigen::Vector3d& x, int side) const {
+  std::vector<std::pair<int, double>> result;
+  const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
+  if (first_branch < 0) return result;
+  const Eigen::Matrix<double, 4, Eigen::Dynamic> phi = branch_functions_at(t, x, side);
+  for (Eigen::Index j = 0; j < phi.cols(); ++j) result.emplace_back(slots_(t, first_branch + static_cast<int>(j)), phi(0, j));
+  return result;
 }
 
 Eigen::MatrixX3d CutXfemModel::phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const {
@@ -342,6 +543,9 @@ PhantomMesh CutXfemModel::phantom_mesh() const {
   phantom.mesh.nodes.topRows(N) = mesh_.nodes;
   for (Eigen::Index k = 0; k < enrichment_.num_enrichments(); ++k)
     phantom.mesh.nodes.row(N + k) = mesh_.nodes.row(enrichment_.enrichment_node[static_cast<std::size_t>(k)]);
+  for (int k = 0; k < num_branch_nodes(); ++k)
+    for (int l = 0; l < 4; ++l)
+      phantom.mesh.nodes.row(branch_dof_node(k) + l) = mesh_.nodes.row(tip_->enrichment.branch_node[static_cast<std::size_t>(k)]);
   std::vector<Eigen::Vector4i> tets;
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     const std::span<const Piece> list = integrated_pieces(t);
@@ -361,11 +565,7 @@ PhantomMesh CutXfemModel::phantom_mesh() const {
           const double v = convex_cell_volume(tp.cells[static_cast<std::size_t>(c)]);
           if (v <= largest) continue;
           largest = v;
-          Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-          int count = 0;
-          for (const CellFace& face : tp.cells[static_cast<std::size_t>(c)].faces)
-            for (const Eigen::Vector3d& y : face.polygon) sum += y, ++count;
-          point = sum / count;
+          point = convex_cell_inner_point(tp.cells[static_cast<std::size_t>(c)]);
         }
       }
       tets.push_back(corners);
@@ -423,8 +623,10 @@ Eigen::Vector3d CutXfemModel::displacement_at(const Eigen::VectorXd& u, Eigen::I
     p = above != found.end() ? *above : found.front();
   }
   const Eigen::MatrixX3d u_p = phantom_displacements(u, t, p);
-  if (mesh_.order() == 1) return (tet4_shape(xi).transpose() * u_p).transpose();
-  return (tet10_shape(xi).transpose() * u_p).transpose();
+  Eigen::Vector3d value =
+      mesh_.order() == 1 ? Eigen::Vector3d((tet4_shape(xi).transpose() * u_p).transpose()) : Eigen::Vector3d((tet10_shape(xi).transpose() * u_p).transpose());
+  for (const auto& [node, phi] : branch_values_at(t, p, x)) value += phi * u.segment<3>(3 * node);
+  return value;
 }
 
 DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions, double sliver_fraction) {
@@ -438,6 +640,11 @@ DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<Dirich
       if (v >= num_nodes) continue;
       for (int k = enrichment.first_enrichment[static_cast<std::size_t>(v)]; k < enrichment.first_enrichment[static_cast<std::size_t>(v) + 1]; ++k)
         enrichments_of_gripped.nodes.push_back(num_nodes + k);
+      // A gripped branch node's four functions too: with them at 0 the field there is the
+      // standard one, held at the node's value (the shifted functions vanish at every node).
+      if (const CrackTipFunctions* tip = model.crack_tip(); tip && tip->enrichment.branch_slot[static_cast<std::size_t>(v)] >= 0)
+        for (int l = 0; l < 4; ++l)
+          enrichments_of_gripped.nodes.push_back(static_cast<int>(model.branch_dof_node(tip->enrichment.branch_slot[static_cast<std::size_t>(v)])) + l);
     }
   // First, so that a condition the caller puts on an enrichment itself has the last word.
   std::vector<DirichletNodes> with_enrichments{enrichments_of_gripped};

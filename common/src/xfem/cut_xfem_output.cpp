@@ -30,7 +30,10 @@ void write_cut_xfem_vtu(const std::filesystem::path& file, const CutXfemModel& m
 
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const int e = pieces.entry[static_cast<std::size_t>(t)];
-    if (!model.split(t) || e < 0 || pieces.num_pieces(t) == 1) {
+    // A tet with branch functions is drawn cell by cell even as one piece: the partial cut
+    // inside a tet the front crosses opens there (chapter 5).
+    const bool branch = model.has_branch_functions(t);
+    if (!model.split(t) || e < 0 || (pieces.num_pieces(t) == 1 && !branch)) {
       // Drawn whole: corners shared with the neighbours, displaced by the tet's one field
       // (at a corner that is the node's own u_i, or u_i + a_k where an enrichment is 1).
       const Eigen::MatrixX3d u_p = model.phantom_displacements(u, t, 0);
@@ -57,19 +60,29 @@ void write_cut_xfem_vtu(const std::filesystem::path& file, const CutXfemModel& m
     const TetPieces& tp = pieces.tets[static_cast<std::size_t>(e)];
     for (int p = 0; p < tp.num_pieces(); ++p) {
       const Eigen::MatrixX3d u_p = model.phantom_displacements(u, t, p);
-      for (const int c : tp.pieces[static_cast<std::size_t>(p)].cells)
+      for (const int c : tp.pieces[static_cast<std::size_t>(p)].cells) {
+        // The side of the cut the cell lies on, for the branch function F_1 at its vertices on
+        // the cut (two-valued there): from its centre, behind the front; none ahead of it.
+        int side = 0;
+        if (branch) {
+          const FrontPolar polar = model.crack_tip()->fronts.polar(convex_cell_inner_point(tp.cells[static_cast<std::size_t>(c)]));
+          if (polar.x_a < 0.0) side = polar.x_b > 0.0 ? 1 : -1;
+        }
         for (const Eigen::Matrix<double, 4, 3>& sub : convex_cell_tetrahedra(tp.cells[static_cast<std::size_t>(c)])) {
           std::array<int, 4> tet{};
           for (int k = 0; k < 4; ++k) {
             const Eigen::Vector3d x = sub.row(k).transpose();
             tet[static_cast<std::size_t>(k)] = static_cast<int>(points.size());
             points.push_back(x);
-            displacements.push_back((model.shape_values(t, x).transpose() * u_p).transpose());
+            Eigen::Vector3d value = (model.shape_values(t, x).transpose() * u_p).transpose();
+            for (const auto& [node, phi] : model.branch_values_on_side(t, x, side)) value += phi * u.segment<3>(3 * node);
+            displacements.push_back(value);
           }
           tets.push_back(tet);
           parent.push_back(static_cast<double>(t));
           piece_of_tet.push_back(static_cast<double>(p));
         }
+      }
     }
   }
 

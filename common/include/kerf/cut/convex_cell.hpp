@@ -236,6 +236,10 @@ int split_cell(std::vector<ConvexCell>& cells, int c, const Value& value, const 
 /// of the face and A_f its outward area vector (the divergence theorem for div x = 3).
 double convex_cell_volume(const ConvexCell& cell);
 
+/// The mean of the corners of the cell's faces (each corner counted once per face): a point
+/// inside a convex cell, cheaper than its centroid.
+Eigen::Vector3d convex_cell_inner_point(const ConvexCell& cell);
+
 /// The cell as positively oriented tetrahedra: a fan from the cell's first corner to the
 /// triangles of a fan over each face that does not contain that corner. Every tet lies in the
 /// cell and they fill it without overlap, so a Gauss rule on each integrates over the cell with

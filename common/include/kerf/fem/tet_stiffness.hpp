@@ -15,16 +15,25 @@ namespace kerf {
 ///
 /// This is the form the paper derives in appendix 7.1 (eq. 96); it equals B^T C B with the
 /// Voigt matrix of eq. (6), and it is cheaper: no 6 x 3n B matrix is formed.
-template <int n>
-void add_stiffness_integrand(const Eigen::Matrix<double, n, 3>& g, double weight, double mu, double lambda,
-                             Eigen::Matrix<double, 3 * n, 3 * n>& K) {
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
+///
+/// Any number of rows: an enriched element's (chapter 5) has one per function, its gradients
+/// those of the enrichment functions; K is then a dynamic-size matrix of 3 rows(g) squared.
+template <typename Gradients, typename Stiffness>
+void add_stiffness_integrand(const Gradients& g, double weight, double mu, double lambda, Stiffness& K) {
+  for (Eigen::Index i = 0; i < g.rows(); ++i)
+    for (Eigen::Index j = 0; j < g.rows(); ++j) {
       const Eigen::RowVector3d gi = g.row(i), gj = g.row(j);
       Eigen::Matrix3d block = mu * gj.transpose() * gi + lambda * gi.transpose() * gj;
       block.diagonal().array() += mu * gi.dot(gj);
       K.template block<3, 3>(3 * i, 3 * j) += weight * block;
     }
+}
+
+/// The fixed-size form, n nodes: the compiler unrolls it for a Tet4 and a Tet10.
+template <int n>
+void add_stiffness_integrand(const Eigen::Matrix<double, n, 3>& g, double weight, double mu, double lambda,
+                             Eigen::Matrix<double, 3 * n, 3 * n>& K) {
+  add_stiffness_integrand<Eigen::Matrix<double, n, 3>, Eigen::Matrix<double, 3 * n, 3 * n>>(g, weight, mu, lambda, K);
 }
 
 /// Tet4 element stiffness (eq. 30 with constant gradients, times the volume), 12x12.

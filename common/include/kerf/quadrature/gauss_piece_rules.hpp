@@ -18,4 +18,21 @@ PieceQuadratureRule volume_ratio_rule(const Eigen::Matrix<double, 4, 3>& X, cons
 /// It costs (number of sub-tets) x (points of the Gauss rule).
 PieceQuadratureRule subtet_rule(const TetPieces& pieces, int piece, int degree);
 
+/// Appends the Gauss rule of `degree` on every tet of the cell's fan (convex_cell_tetrahedra) to
+/// `rule`: subtet_rule's work for one convex cell, for rules that treat some cells otherwise.
+void append_cell_gauss_rule(const ConvexCell& cell, int degree, PieceQuadratureRule& rule);
+
+/// The 8 children of the tet T (rows: corners) by its edges' midpoints, Bey's regular
+/// refinement: 4 at the corners, 4 from the inner octahedron split along a diagonal, each of
+/// volume V / 8 and positively oriented if T is.
+std::vector<Eigen::Matrix<double, 4, 3>> refine_tet(const Eigen::Matrix<double, 4, 3>& T);
+
+/// subtet_rule with every sub-tet refined `refinements` times first, each time into 8 tets by its
+/// edges' midpoints (4 at the corners, 4 from the inner octahedron split along a diagonal): for
+/// integrands that are not polynomials, such as the branch functions near a crack front
+/// (chapter 5), whose error falls with the size of the sub-tets rather than with the degree.
+/// It costs 8^refinements times subtet_rule's points.
+/// @param refinements >= 0 (0 is subtet_rule)
+PieceQuadratureRule refined_subtet_rule(const TetPieces& pieces, int piece, int degree, int refinements);
+
 } // namespace kerf

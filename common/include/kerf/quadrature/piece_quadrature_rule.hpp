@@ -68,6 +68,9 @@ PieceQuadratureRule piece_quadrature_rule(QuadratureRuleKind kind, const Eigen::
 /// m^3 ... m^5): the piece's volume, first and second moments as the rule sees them.
 Eigen::Matrix<double, 10, 1> piece_moments(const PieceQuadratureRule& rule);
 
+/// sum_q w_q f(x_q): the rule applied to an integrand given as a function of the point.
+double integrate(const PieceQuadratureRule& rule, const std::function<double(const Eigen::Vector3d&)>& f);
+
 /// The number of points with a nonzero weight (Koschier Table 1's "#QP").
 int count_points(const PieceQuadratureRule& rule);
 

@@ -9,6 +9,7 @@
 #include "kerf/fem/linear_material.hpp"
 #include "kerf/quadrature/piece_quadrature_rule.hpp"
 #include "kerf/solve/linear_solver.hpp"
+#include "kerf/xfem/branch_enrichment.hpp"
 #include "kerf/xfem/enrichment_volumes.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 #include "kerf/xfem/xfem_model.hpp"
@@ -16,6 +17,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace kerf {
@@ -25,6 +27,32 @@ namespace kerf {
 /// and N b (b constant) degree 1 and 2: one rule of the larger degree serves both, 1 for a Tet4
 /// and 2 for a Tet10. (The mass N^T N needs 2 and 4: cut_xfem_mass.hpp asks for its own.)
 inline int stiffness_and_load_degree(int order) { return order == 1 ? 1 : 2; }
+
+/// How the tets with branch-enriched nodes are integrated (chapter 5): the branch functions are
+/// no polynomials, and their gradients grow like 1 / sqrt(r) at the front (notes 5.5).
+enum class FrontRule : signed char {
+  collapsed,       ///< sub-tets collapsed onto the front, exact in r (front_quadrature.hpp)
+  refined_subtets, ///< Gauss rules on the sub-tets, each refined once into 8 (gauss_piece_rules.hpp)
+};
+
+/// Chapter 5's crack-tip enrichment, as the model takes it: which nodes carry the four branch
+/// functions (branch_enrichment.hpp; its `sign` is the SurfaceEnrichment the model is given),
+/// the fronts they are measured from, and the rules of the tets they act in.
+struct CrackTipFunctions {
+  const BranchEnrichment& enrichment; ///< kept by reference
+  const CrackFronts& fronts;          ///< kept by reference
+  FrontRule front_rule = FrontRule::collapsed;
+  /// Points per direction of each collapsed sub-tet of a tet the front crosses (n^3 per
+  /// sub-tet); with refined_subtets, the Gauss degree 2 n - 1 on sub-tets refined once. 0: the
+  /// default, 4 on a Tet4 and 6 on a Tet10, whose integrands have two degrees more (measured in
+  /// tests/chapter_05/test_crack_tip_model.cpp: a Tet10's exact quadratic field to 3e-5 with 4, 6e-9 with 6).
+  int front_points = 0;
+  /// The Gauss degree on the other tets with branch nodes (the sub-tets of their pieces, or of
+  /// the whole tet, graded towards the front: near_front_graded_rule): the functions are smooth
+  /// there, but no polynomials, and steep close to the front.
+  int blending_degree = 6;
+  int blending_depth = 3; ///< how often a sub-tet nearer the front than its size may be refined
+};
 
 /// A Tet4 or Tet10 mesh cut by triangle-mesh cuts, enriched on the one-ring.
 ///
@@ -48,6 +76,22 @@ inline int stiffness_and_load_degree(int order) { return order == 1 ? 1 : 2; }
 /// Tets that no enrichment reaches are chapter 1's and 2's elements, integrated with their own
 /// rules (a tet that is cut, but whose nodes the rule of surface_enrichment.hpp leaves
 /// unenriched, is continuous across the cut: the cut cannot open there, Koschier section 8).
+///
+/// Crack-tip functions (chapter 5). Given CrackTipFunctions, the unknowns grow by twelve per
+/// branch node, [u; a; b] with b_{i,l} (l = 0..3) after the a's, DOF node N + M + 4 k + l for
+/// the corner in branch slot k, and the field by
+///
+///   sum_{v branch} sum_l (lambda_v F_l - I_h(lambda_v F_l)) b_{v,l}   (Paulus eq. 3, shifted)
+///
+/// with lambda_v the corner's linear hat and I_h the element's nodal interpolant: on a Tet4
+/// N_v (F_l - F_l(x_v)), Paulus's functions shifted; on a Tet10 the same space, still zero at
+/// every node (branch_enrichment.hpp: why linear hats, not the Tet10's own functions).
+///
+/// on every tet that holds a branch node. Those functions are not constant on a piece, so the
+/// phantom element alone no longer describes such a tet: at each quadrature point the model
+/// adds the branch functions' gradients to the phantom element's, and integrates the tet by its
+/// front or blending rule (FrontRule). The branch nodes have no sign enrichments
+/// (BranchEnrichment::sign): a node is never both (Paulus section 3.3).
 class CutXfemModel : public QuasiStaticModel {
 public:
   /// @param mesh       Tet4 or Tet10 mesh, straight-edged (kept by reference)
@@ -55,10 +99,14 @@ public:
   /// @param pieces     cut_mesh_into_pieces(mesh, cuts) (kept by reference)
   /// @param enrichment make_surface_enrichment(mesh, pieces) (kept by reference)
   /// @param rule       the quadrature rule of each piece of every tet that an enrichment splits
+  /// @param tip        chapter 5's branch functions, or nullptr (kept by reference); `enrichment`
+  ///                   must then be tip->enrichment.sign
   CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
-               const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule);
+               const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule, const CrackTipFunctions* tip = nullptr);
 
-  Eigen::Index num_dof_nodes() const override { return mesh_.num_nodes() + enrichment_.num_enrichments(); }
+  Eigen::Index num_dof_nodes() const override {
+    return mesh_.num_nodes() + enrichment_.num_enrichments() + 4 * num_branch_nodes();
+  }
   const TetMatrix& assembly_slots() const override { return slots_; }
   CorotationStatistics assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                                 Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const override;
@@ -77,6 +125,14 @@ public:
   /// The displacement at x (m) in tet t, on the piece that holds x (one above the cut, if x lies
   /// on the cut); NaN if x is not in tet t.
   Eigen::Vector3d displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const;
+  /// The branch functions acting at x (m) on piece p of tet t: for each, its DOF node and its
+  /// value N_a(x) (F_l(x) - F_l(x_a)); empty where no branch node acts.
+  std::vector<std::pair<int, double>> branch_values_at(Eigen::Index t, int p, const Eigen::Vector3d& x) const;
+  /// The same for a point known to lie on side `side` (+1 above, -1 below, 0 not known) of the
+  /// cut, which may lie on the cut itself: F_1 then takes that side's value (theta = side pi).
+  std::vector<std::pair<int, double>> branch_values_on_side(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
+  /// Whether tet t holds a branch-enriched node (its field has the branch functions).
+  bool has_branch_functions(Eigen::Index t) const { return first_branch_slot_[static_cast<std::size_t>(t)] >= 0; }
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
   Eigen::MatrixX3d phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const;
   /// The n shape functions of tet t at the point x (m).
@@ -91,6 +147,12 @@ public:
   const TetMesh& mesh() const { return mesh_; }
   const MeshPieces& pieces() const { return pieces_; }
   const SurfaceEnrichment& enrichment() const { return enrichment_; }
+  /// Chapter 5's branch functions, or nullptr.
+  const CrackTipFunctions* crack_tip() const { return tip_; }
+  /// The number of branch-enriched nodes (0 without crack-tip functions).
+  Eigen::Index num_branch_nodes() const { return tip_ ? tip_->enrichment.num_branch_nodes() : 0; }
+  /// The first DOF node of branch slot k's four functions: N + M + 4 k.
+  Eigen::Index branch_dof_node(int k) const { return mesh_.num_nodes() + enrichment_.num_enrichments() + 4 * k; }
   /// Whether tet t is integrated piece by piece (an enrichment acts in it and it has pieces).
   bool split(Eigen::Index t) const { return !piece_data_[static_cast<std::size_t>(t)].empty(); }
   /// The volume of piece p of tet t as its rule sees it, the sum of the weights (m^3); for a
@@ -120,7 +182,18 @@ private:
   struct Piece {
     std::vector<int> enrichment_slot; // n entries: slot index in the element row (>= n), or -1
     std::vector<Point> points;
+    // In a tet with branch nodes: per point (rows), the values of the tet's branch functions
+    // N_a (F_l - F_l(x_a)) (columns, in the order of its branch slots), and their gradients
+    // (3 columns each). Empty elsewhere.
+    Eigen::MatrixXd branch_value, branch_gradient;
+    int side = 0; // +1 / -1 if the piece lies above / below the cut, for theta's sign (0: not known)
   };
+  // The branch functions of tet t at x on a piece on side `side` of the cut (0: not known):
+  // one column per branch slot of the tet, values in row 0 and the gradient in rows 1-3.
+  Eigen::Matrix<double, 4, Eigen::Dynamic> branch_functions_at(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
+  // A tet with branch nodes: the dynamic-size path of assemble_tet (linear only).
+  void assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, Eigen::VectorXd& f_int,
+                           SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const;
   // What tet t integrates: its split pieces, or the whole tet as one piece.
   std::span<const Piece> integrated_pieces(Eigen::Index t) const;
   // One tet's forces (and tangent): linear (corotated false, R = I) or corotated.
@@ -137,6 +210,12 @@ private:
   LinearMaterial material_;
   const MeshPieces& pieces_;
   const SurfaceEnrichment& enrichment_;
+  const CrackTipFunctions* tip_ = nullptr;
+  // Per tet with branch nodes: its first branch slot (after the sign slots) and the local nodes
+  // that are branch enriched; -1 and empty elsewhere.
+  std::vector<int> first_branch_slot_;
+  std::vector<std::vector<int>> branch_local_nodes_;
+  std::vector<Eigen::Matrix<double, 4, Eigen::Dynamic>> branch_nodal_values_; // per such tet: F_l at its n nodes (4 x n)
   TetMatrix slots_;
   std::vector<std::vector<Piece>> piece_data_; // per tet; empty for tets integrated whole
   std::vector<Piece> whole_;                    // per tet integrated whole: its own rule (filled for all tets)

@@ -1,0 +1,90 @@
+/// @file branch_enrichment.hpp
+/// @brief Which nodes get the crack-tip (branch) functions and which the sign (Heaviside) enrichment, by Paulus's topological rule or by a radius (Paulus section 3.3, notes 5.1).
+///
+/// Chapter 4 enriches a node once per extra part its support is cut into (surface_enrichment.hpp):
+/// a node whose support holds the front is not split and gets nothing, so the cut ends at the
+/// last row of enriched nodes. Chapter 5 gives the nodes near the front the four branch functions
+/// of branch_functions.hpp (12 extra DOFs each) and keeps chapter 4's enrichment for the others.
+///
+/// Only corner nodes carry branch functions, with the corners' linear hats as their partition of
+/// unity, on a Tet10 too: with the Tet10's quadratic shape functions the products would be
+/// linearly dependent (branch_enrichment.cpp derives the two identities that make them so).
+///
+/// The two rules for "near the front":
+/// - **topological** (Paulus section 3.3): a node is branch enriched if it belongs to a tet the
+///   front passes through. Paulus says "a partially cut element"; Kerf takes every tet that
+///   holds a piece of the front of positive length (front_in_tet), which is the partially cut
+///   tets and, when the front runs exactly along a face or an edge, the tets on both sides of it
+///   (where no tet is partially cut and Paulus's rule would enrich nothing);
+/// - **geometric** (Laborde et al. 2005, Bechet et al. 2005; notes 5.1): every node within the
+///   radius r_e of the front, and the topological ones as well, so that the two sets are nested
+///   even when r_e is smaller than the elements (a tet the front crosses always has branch nodes).
+/// The sign nodes are chapter 4's enriched nodes that are not branch enriched (a node is never
+/// both, Paulus Fig. 2). Paulus's rule "nodes of completely cut elements" agrees: a node of a
+/// completely cut tet whose support holds no piece of the front has its support split, so chapter
+/// 4 enriches it; one whose support holds a piece of the front is branch enriched by both rules.
+///
+/// Blending tets (notes 5.6): tets with some, not all, nodes branch enriched. The tets with a
+/// branch node are where the model integrates the branch functions (uncut blending tets
+/// included: Paulus's "uncut blending element").
+#pragma once
+
+#include "kerf/cut/crack_front.hpp"
+#include "kerf/cut/mesh_pieces.hpp"
+#include "kerf/mesh/tet_mesh.hpp"
+#include "kerf/xfem/surface_enrichment.hpp"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace kerf {
+
+/// Which nodes near the front get the branch functions.
+enum class TipEnrichmentRule : signed char {
+  topological, ///< the nodes of the tets the front passes through (Paulus section 3.3)
+  geometric,   ///< every node within a radius of the front, and the topological ones
+};
+
+/// What a node carries beyond its standard DOFs.
+enum class NodeEnrichmentKind : signed char {
+  none,   ///< nothing
+  sign,   ///< chapter 4's enrichments (one or more; 3 DOFs each)
+  branch, ///< the four branch functions (12 DOFs)
+};
+
+/// The enrichment of a mesh whose cuts may end inside it.
+struct BranchEnrichment {
+  std::vector<NodeEnrichmentKind> kind; ///< #V
+  /// #V: the branch slot k of a branch node (its functions F_1..F_4 are enrichments 4k .. 4k+3
+  /// of the branch block), -1 for the others.
+  std::vector<int> branch_slot;
+  std::vector<int> branch_node;         ///< N_B: the node of each slot
+  /// N_B: F_l(x_i) at each branch node, for the shift N_i (F_l(x) - F_l(x_i)): with theta = +pi
+  /// for a node lying on the cut, the side chapter 4 gives such a node (above).
+  std::vector<Eigen::Vector4d> node_values;
+  /// #V: +1 for a node lying on a cut (within 1e-10 of the tet size), so that theta = +pi there
+  /// (CrackFronts::polar's cut_side), 0 for the others. Only branch nodes are looked at.
+  std::vector<int> cut_side;
+  std::vector<char> front_tet;          ///< #T: a piece of the front lies in it (front_in_tet)
+  std::vector<char> has_branch_nodes;   ///< #T: some corner of it is branch enriched
+  std::vector<char> blending;           ///< #T: some, but not all, of its corners are branch enriched
+  /// Chapter 4's enrichment with the branch nodes' enrichments taken out (renumbered, `active`
+  /// pointing to the remaining ones): what the model uses for the sign DOFs.
+  SurfaceEnrichment sign;
+
+  int num_branch_nodes() const { return static_cast<int>(branch_node.size()); }
+  /// The number of nodes of each kind.
+  int count(NodeEnrichmentKind k) const;
+};
+
+/// Classifies every node of `mesh` (notes 5.1).
+/// @param mesh     Tet4 or Tet10 mesh
+/// @param pieces   cut_mesh_into_pieces(mesh, cuts)
+/// @param fronts   find_crack_fronts(mesh, cuts)
+/// @param rule     topological or geometric
+/// @param radius   r_e of the geometric rule (m), >= 0; ignored by the topological rule
+/// @throws std::invalid_argument for a negative or non-finite radius
+BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& pieces, const CrackFronts& fronts,
+                                        TipEnrichmentRule rule, double radius = 0.0);
+
+} // namespace kerf
