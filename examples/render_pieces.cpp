@@ -36,8 +36,9 @@
 namespace {
 
 const std::string usage =
-    "usage: render_pieces IN.vtu [IN2.vtu ...] OUT.png [--warp s] [--color displacement|CELL_ARRAY] [--azimuth a]\n"
-    "                     [--elevation e] [--zoom z] [--size WxH] [--clip-plane ox,oy,oz,nx,ny,nz] [--spacing dx]\n"
+    "usage: render_pieces IN.vtu OUT.png [--warp s] [--color displacement|CELL_ARRAY] [--azimuth a]\n"
+    "                     [--elevation e] [--zoom z] [--size WxH] [--clip-plane ox,oy,oz,nx,ny,nz]\n"
+    "       render_pieces IN.vtu IN2.vtu ... OUT.png [the same options] [--spacing dx]    (a strip)\n"
     "Draws the body in IN.vtu (a .vtu a Kerf program wrote, with the point array 'displacement'), every point\n"
     "moved by s times its displacement, into the picture OUT.png. Needs an X display: xvfb-run -a render_pieces ...\n"
     "  --warp s          factor on the displacement (default 1: as it moved; 0: unmoved)\n"
@@ -123,7 +124,7 @@ Request parse_request(int argc, char** argv) {
     else files.push_back(arg);
   }
   if (request.help) return request;
-  if (files.size() < 2) throw kerf::InputError("command line", "files", "expected IN.vtu [IN2.vtu ...] OUT.png (see --help)");
+  if (files.size() < 2) throw kerf::InputError("command line", "files", "expected IN.vtu OUT.png, or IN.vtu IN2.vtu ... OUT.png for a strip (see --help)");
   if (!(std::abs(request.picture.camera.elevation) < 90.0))
     throw kerf::InputError("command line", "--elevation", "expected an angle in (-90, 90) degrees, z being up");
   if (!(request.picture.camera.zoom > 0.0)) throw kerf::InputError("command line", "--zoom", "expected a positive factor");
