@@ -1,7 +1,12 @@
 // render_pieces: a picture of a body Kerf wrote, moved by its displacement, as a PNG file.
 //
-//   render_pieces IN.vtu OUT.png [--warp s] [--color displacement|CELL_ARRAY] [--azimuth a]
-//                 [--elevation e] [--zoom z] [--size WxH] [--clip-plane ox,oy,oz,nx,ny,nz]
+//   render_pieces IN.vtu [IN2.vtu ...] OUT.png [--warp s] [--color displacement|CELL_ARRAY]
+//                 [--azimuth a] [--elevation e] [--zoom z] [--size WxH] [--clip-plane ox,oy,oz,nx,ny,nz]
+//                 [--spacing dx]
+//
+// With several inputs (the frames of a run) it draws a strip: every body in one picture, the
+// k-th moved by k dx along x, under one camera, so that the frames share one scale
+// (figures/06_newmark/render_strip.sh).
 //
 // The figure scripts use it (figures/04_cut_quadrature/render_open_cut.sh draws chapter 4's
 // open cut from the demo's beam_curved_cut_pieces.vtu). It draws through X: on a machine
@@ -14,6 +19,11 @@
 #include "kerf/render/warped_surface.hpp"
 #include "kerf/render/write_png.hpp"
 
+#include <vtkAppendPolyData.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -28,6 +38,7 @@ namespace {
 const std::string usage =
     "usage: render_pieces IN.vtu OUT.png [--warp s] [--color displacement|CELL_ARRAY] [--azimuth a]\n"
     "                     [--elevation e] [--zoom z] [--size WxH] [--clip-plane ox,oy,oz,nx,ny,nz]\n"
+    "       render_pieces IN.vtu IN2.vtu ... OUT.png [the same options] [--spacing dx]    (a strip)\n"
     "Draws the body in IN.vtu (a .vtu a Kerf program wrote, with the point array 'displacement'), every point\n"
     "moved by s times its displacement, into the picture OUT.png. Needs an X display: xvfb-run -a render_pieces ...\n"
     "  --warp s          factor on the displacement (default 1: as it moved; 0: unmoved)\n"
@@ -39,11 +50,15 @@ const std::string usage =
     "  --size WxH        the picture's size in pixels (default 1200x900)\n"
     "  --clip-plane o,n  six numbers: draw only the part of the moved body on the side the normal n points to\n"
     "                    of the plane through o, cut open along the plane (coordinates in metres)\n"
+    "  --spacing dx      with several IN files: the k-th drawn moved by k dx along x (m; default 1.25 times the\n"
+    "                    widest body's x extent), all under one camera\n"
     "  --help            this text\n";
 
 /// What the command line asked for.
 struct Request {
-  std::filesystem::path in, out;
+  std::vector<std::filesystem::path> in;
+  std::filesystem::path out;
+  std::optional<double> spacing;
   double warp = 1.0;
   std::optional<kerf::ClipPlane> clip;
   kerf::PictureSettings picture;
@@ -102,16 +117,19 @@ Request parse_request(int argc, char** argv) {
       const kerf::ClipPlane clip{{p[0], p[1], p[2]}, {p[3], p[4], p[5]}};
       if (clip.normal.norm() == 0.0) throw kerf::InputError("command line", arg, "the normal (nx,ny,nz) is zero");
       request.clip = clip;
+    } else if (arg == "--spacing") {
+      request.spacing = parse_number(arg, value());
+      if (!(*request.spacing > 0.0)) throw kerf::InputError("command line", arg, "expected a positive distance in m");
     } else if (arg.starts_with("--")) throw kerf::InputError("command line", arg, "unknown option (see --help)");
     else files.push_back(arg);
   }
   if (request.help) return request;
-  if (files.size() != 2) throw kerf::InputError("command line", "files", "expected IN.vtu OUT.png (see --help)");
+  if (files.size() < 2) throw kerf::InputError("command line", "files", "expected IN.vtu OUT.png, or IN.vtu IN2.vtu ... OUT.png for a strip (see --help)");
   if (!(std::abs(request.picture.camera.elevation) < 90.0))
     throw kerf::InputError("command line", "--elevation", "expected an angle in (-90, 90) degrees, z being up");
   if (!(request.picture.camera.zoom > 0.0)) throw kerf::InputError("command line", "--zoom", "expected a positive factor");
-  request.in = files[0];
-  request.out = files[1];
+  request.in.assign(files.begin(), files.end() - 1);
+  request.out = files.back();
   return request;
 }
 
@@ -124,11 +142,33 @@ int main(int argc, char** argv) {
       std::cout << usage;
       return;
     }
-    const vtkSmartPointer<vtkUnstructuredGrid> body = kerf::read_piece_mesh(request.in);
-    if (request.picture.colour_by != "displacement") kerf::require_cell_array(*body, request.picture.colour_by, request.in);
-    const vtkSmartPointer<vtkPolyData> surface = kerf::warped_surface(*body, request.warp, request.clip);
-    if (surface->GetNumberOfPolys() == 0)
-      throw kerf::InputError("command line", "--clip-plane", "the plane leaves nothing of the body in " + request.in.string());
+    std::vector<vtkSmartPointer<vtkPolyData>> surfaces;
+    double widest = 0.0;
+    for (const std::filesystem::path& in : request.in) {
+      const vtkSmartPointer<vtkUnstructuredGrid> body = kerf::read_piece_mesh(in);
+      if (request.picture.colour_by != "displacement") kerf::require_cell_array(*body, request.picture.colour_by, in);
+      surfaces.push_back(kerf::warped_surface(*body, request.warp, request.clip));
+      if (surfaces.back()->GetNumberOfPolys() == 0)
+        throw kerf::InputError("command line", "--clip-plane", "the plane leaves nothing of the body in " + in.string());
+      const double* bounds = surfaces.back()->GetBounds();
+      widest = std::max(widest, bounds[1] - bounds[0]);
+    }
+    // The strip: the k-th surface moved by k dx along x, all appended into one surface, which
+    // one camera then fits (a single input is drawn as it is).
+    const double dx = request.spacing.value_or(1.25 * widest);
+    vtkNew<vtkAppendPolyData> strip;
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+      vtkPoints* points = surfaces[k]->GetPoints();
+      for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i) {
+        double x[3];
+        points->GetPoint(i, x);
+        x[0] += double(k) * dx;
+        points->SetPoint(i, x);
+      }
+      strip->AddInputData(surfaces[k]);
+    }
+    strip->Update();
+    const vtkSmartPointer<vtkPolyData> surface = strip->GetOutput();
     const vtkSmartPointer<vtkImageData> image = kerf::render_surface_image(*surface, request.picture);
     kerf::write_png(request.out, *image);
     std::cout << "wrote " << request.out.string() << " (" << request.picture.width << " x " << request.picture.height << ")\n";
