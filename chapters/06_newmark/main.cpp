@@ -311,7 +311,15 @@ void CutDynamics::setup_nonlinear_integrator() {
   settings.newmark = {time.beta, time.gamma};
   settings.update = time.corotation == "newton" ? kerf::RotationUpdate::newton : kerf::RotationUpdate::frozen;
   settings.tolerance = time.tolerance;
+  // The steps' solver: the scene's, or by default conjugate gradients preconditioned by a CHOLMOD
+  // factor reused over many steps, to time.tolerance. A step's matrix changes little from one step
+  // to the next, so the old factor is a near-perfect preconditioner: a few iterations per step
+  // and a refactorisation every several steps (figures/06_newmark/bench_newmark.md).
   settings.solver = scene_.solver;
+  if (!scene_.solver_given) {
+    settings.solver.type = "cg-cholmod";
+    settings.solver.tolerance = time.tolerance;
+  }
   nonlinear_newmark_ = std::make_unique<kerf::NonlinearNewmarkIntegrator>(nonlinear_, time.dt, settings);
   step_ = [this](kerf::DynamicState& state) {
     const kerf::NonlinearStepReport step = nonlinear_newmark_->step(state);
