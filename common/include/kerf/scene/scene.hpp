@@ -114,8 +114,8 @@ struct TimeSpec {
   /// model, or moving clamps): the conjugate-gradient tolerance of its linear solves when the
   /// scene gives no "solver" (chapter 6 then steps with Jacobi-preconditioned CG), and where a
   /// "newton" step stops iterating. 1e-3: on the cut soft block of
-  /// figures/06_newmark/bench_newmark.md, within 1e-4 of a run solved exactly (1e-2 is 16-23 %
-  /// faster but only about 10 times inside the 1 % bound).
+  /// figures/06_newmark/bench_newmark.md, within 1.3e-4 of a run solved exactly (1e-2 saves 14-23 %
+  /// of the time but is only 5-13 times inside the 1 % bound).
   double tolerance = 1e-3;
   Eigen::Vector3d initial_velocity{0.0, 0.0, 0.0}; ///< m/s, the same at every node
   bool allow_unstable = false;              ///< run a Newmark pair outside 2 beta >= gamma >= 1/2, or an explicit step above its limit
