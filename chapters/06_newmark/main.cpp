@@ -311,7 +311,18 @@ void CutDynamics::setup_nonlinear_integrator() {
   settings.newmark = {time.beta, time.gamma};
   settings.update = time.corotation == "newton" ? kerf::RotationUpdate::newton : kerf::RotationUpdate::frozen;
   settings.tolerance = time.tolerance;
+  // The steps' solver: the scene's, or by default Jacobi-preconditioned conjugate gradients to
+  // time.tolerance, started from the last step's acceleration. The mass term makes a step's matrix
+  // M + gamma dt C + beta dt^2 K far better conditioned than K alone, so CG needs a few dozen
+  // cheap iterations, fewer than any factorisation costs: on the cut soft block of
+  // figures/06_newmark/bench_newmark.md it beats a CHOLMOD factorisation per step, and CG with a
+  // reused CHOLMOD factor (whose triangular solves cost more than the iterations they save),
+  // from 1k to 100k tets.
   settings.solver = scene_.solver;
+  if (!scene_.solver_given) {
+    settings.solver.type = "cg-jacobi";
+    settings.solver.tolerance = time.tolerance;
+  }
   nonlinear_newmark_ = std::make_unique<kerf::NonlinearNewmarkIntegrator>(nonlinear_, time.dt, settings);
   step_ = [this](kerf::DynamicState& state) {
     const kerf::NonlinearStepReport step = nonlinear_newmark_->step(state);

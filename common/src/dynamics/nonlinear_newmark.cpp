@@ -1,6 +1,7 @@
 #include "kerf/dynamics/nonlinear_newmark.hpp"
 
 #include <algorithm>
+#include <ctime>
 #include <stdexcept>
 #include <vector>
 
@@ -39,6 +40,48 @@ void NonlinearNewmarkIntegrator::solve(const Eigen::SparseMatrix<double>& A_ff, 
   solver_->solve(rhs, x);
 }
 
+const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(double c_M, double c_K, const Eigen::SparseMatrix<double>& K) {
+  const Eigen::SparseMatrix<double>& M = system_.M;
+  if (!K.isCompressed() || !M.isCompressed()) throw std::invalid_argument("NonlinearNewmarkIntegrator: M and K must be compressed");
+  if (K.nonZeros() != pattern_K_nonzeros_) {
+    // The pattern: the free block of M + K with every stored entry kept (ones, so nothing cancels).
+    Eigen::SparseMatrix<double> M_ones = M, K_ones = K;
+    std::fill(M_ones.valuePtr(), M_ones.valuePtr() + M_ones.nonZeros(), 1.0);
+    std::fill(K_ones.valuePtr(), K_ones.valuePtr() + K_ones.nonZeros(), 1.0);
+    A_ff_ = free_block(M_ones + K_ones);
+    A_ff_.makeCompressed();
+    const std::vector<int>& index = system_.dofs.free_index;
+    // Where in A_ff_'s value array the entry (row, col) of the full matrix lands: a binary search in its column.
+    const auto position = [&](Eigen::Index row, Eigen::Index col) -> Eigen::Index {
+      const int r = index[static_cast<std::size_t>(row)], c = index[static_cast<std::size_t>(col)];
+      if (r < 0 || c < 0) return -1;
+      const int* begin = A_ff_.innerIndexPtr() + A_ff_.outerIndexPtr()[c];
+      const int* end = A_ff_.innerIndexPtr() + A_ff_.outerIndexPtr()[c + 1];
+      return std::lower_bound(begin, end, r) - A_ff_.innerIndexPtr();
+    };
+    const auto map_values = [&](const Eigen::SparseMatrix<double>& S, std::vector<Eigen::Index>& from) {
+      from.assign(static_cast<std::size_t>(A_ff_.nonZeros()), -1);
+      for (Eigen::Index col = 0; col < S.outerSize(); ++col)
+        for (Eigen::Index k = S.outerIndexPtr()[col]; k < S.outerIndexPtr()[col + 1]; ++k)
+          if (const Eigen::Index p = position(S.innerIndexPtr()[k], col); p >= 0) from[static_cast<std::size_t>(p)] = k;
+    };
+    map_values(M, from_M_);
+    map_values(K, from_K_);
+    pattern_K_nonzeros_ = K.nonZeros();
+    analysed_ = false;
+  }
+  double* value = A_ff_.valuePtr();
+  for (std::size_t p = 0; p < from_M_.size(); ++p)
+    value[p] = (from_M_[p] >= 0 ? c_M * M.valuePtr()[from_M_[p]] : 0.0) + (from_K_[p] >= 0 ? c_K * K.valuePtr()[from_K_[p]] : 0.0);
+  return A_ff_;
+}
+
+Eigen::VectorXd NonlinearNewmarkIntegrator::damping_force(const Eigen::SparseMatrix<double>& K_R, const Eigen::VectorXd& v) const {
+  Eigen::VectorXd force = system_.rayleigh_alpha * (system_.M * v);
+  if (system_.rayleigh_beta != 0.0) force += system_.rayleigh_beta * (K_R * v);
+  return force;
+}
+
 double NonlinearNewmarkIntegrator::elastic_energy(const Eigen::VectorXd& u) const {
   if (energy_u_.size() != u.size() || energy_u_ != u) {
     energy_value_ = system_.elastic_energy(u);
@@ -56,10 +99,9 @@ DynamicState NonlinearNewmarkIntegrator::initial_state(const Eigen::VectorXd& u0
   Eigen::VectorXd f_int;
   Eigen::SparseMatrix<double> K;
   system_.internal_force(state.u, CorotationalTangent::warped, f_int, &K);
-  const Eigen::SparseMatrix<double> C = system_.rayleigh_alpha * system_.M + system_.rayleigh_beta * K;
   // M_ff a_f = (f - M a_c - C v - f_int)_f, a_c the motion's acceleration.
   const Eigen::VectorXd a_c = combine(Eigen::VectorXd::Zero(P_.rows()), motion.a);
-  const Eigen::VectorXd rhs = P_ * (system_.load(t0) - system_.M * a_c - C * state.v - f_int);
+  const Eigen::VectorXd rhs = P_ * (system_.load(t0) - system_.M * a_c - damping_force(K, state.v) - f_int);
   Eigen::VectorXd a_f;
   solve(free_block(system_.M), rhs, a_f);
   analysed_ = false; // the mass alone may have a smaller pattern than the step's matrix
@@ -92,7 +134,7 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
   Eigen::VectorXd f_int_start;
   Eigen::SparseMatrix<double> K_start;
   system_.internal_force(state.u, CorotationalTangent::warped, f_int_start, &K_start);
-  const Eigen::SparseMatrix<double> C = system_.rayleigh_alpha * M + system_.rayleigh_beta * K_start;
+  const auto C_times = [&](const Eigen::VectorXd& v) { return damping_force(K_start, v); };
 
   // Newmark's predictor; the free DOFs then move with their acceleration, the prescribed ones as told.
   const NewmarkPrediction predicted = newmark_predict(state.u, state.v, state.a, dt, settings_.newmark);
@@ -111,7 +153,7 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
     } else {
       system_.internal_force(next.u, CorotationalTangent::consistent, f_int, &K);
     }
-    residual = f_next - M * next.a - C * next.v - f_int;
+    residual = f_next - M * next.a - C_times(next.v) - f_int;
   };
 
   NonlinearStepReport report;
@@ -127,8 +169,23 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
       break; // the frozen step's residual is linear in a_f: one solve solves it
     }
     const Eigen::SparseMatrix<double>& tangent = settings_.update == RotationUpdate::frozen ? K_start : K;
+    // M + gamma dt C + beta dt^2 K with C = alpha M + beta_R K_start: c_M M + c_K K (frozen: K = K_start).
+    // Newton's tangent differs from K_start, so there the damping part is added as its own matrix.
+    const double c_M = 1.0 + gamma * dt * system_.rayleigh_alpha;
+    const std::clock_t matrix_start = std::clock();
+    Eigen::SparseMatrix<double> newton_matrix;
+    if (settings_.update == RotationUpdate::newton && system_.rayleigh_beta != 0.0)
+      newton_matrix = free_block(c_M * M + (gamma * dt * system_.rayleigh_beta) * K_start + (beta * dt * dt) * tangent);
+    const Eigen::SparseMatrix<double>& A_ff =
+        newton_matrix.size() > 0 ? newton_matrix
+                                 : step_matrix(c_M, beta * dt * dt + (settings_.update == RotationUpdate::frozen ? gamma * dt * system_.rayleigh_beta : 0.0),
+                                               tangent);
+    const std::clock_t solve_start = std::clock();
     Eigen::VectorXd delta;
-    solve(free_block(M + (gamma * dt) * C + (beta * dt * dt) * tangent), r_f, delta);
+    solve(A_ff, r_f, delta);
+    report.solver_iterations += solver_->iterations();
+    report.matrix_seconds += static_cast<double>(solve_start - matrix_start) / CLOCKS_PER_SEC;
+    report.solve_seconds += static_cast<double>(std::clock() - solve_start) / CLOCKS_PER_SEC;
     a_f += delta;
     ++report.iterations;
     evaluate();
@@ -140,10 +197,10 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
   const Eigen::VectorXd du = next.u - state.u, v_bar = 0.5 * (next.v + state.v);
   const Eigen::VectorXd free_mask = Pt_ * Eigen::VectorXd::Ones(P_.rows());
   const Eigen::VectorXd prescribed_mask = Eigen::VectorXd::Ones(du.size()) - free_mask;
-  const Eigen::VectorXd r_start = M * state.a + C * state.v + f_int_start - f_start;
-  const Eigen::VectorXd r_next = M * next.a + C * next.v + f_int - f_next;
+  const Eigen::VectorXd r_start = M * state.a + C_times(state.v) + f_int_start - f_start;
+  const Eigen::VectorXd r_next = M * next.a + C_times(next.v) + f_int - f_next;
   report.energy.external_work = du.dot(0.5 * (f_start + f_next)) + du.cwiseProduct(prescribed_mask).dot(0.5 * (r_start + r_next));
-  report.energy.damping = du.dot(C * v_bar);
+  report.energy.damping = du.dot(C_times(v_bar));
   const double kinetic_change = 0.5 * next.v.dot(M * next.v) - 0.5 * state.v.dot(M * state.v);
   const double elastic_start = elastic_energy(state.u);
   const double elastic_change = elastic_energy(next.u) - elastic_start;

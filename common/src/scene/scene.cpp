@@ -511,6 +511,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.output_every = read_output_every(r);
   scene.quasi_static = read_quasi_static(r);
   scene.solver = read_solver(r);
+  scene.solver_given = r.has("solver");
   return scene;
 }
 

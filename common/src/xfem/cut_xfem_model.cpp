@@ -308,15 +308,17 @@ Eigen::Index CutXfemModel::num_piece_points() const {
 template <int n>
 void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                                 bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
-                                CorotationStatistics& stats) const {
+                                CorotationStatistics& stats, ElementBuffers& buffers) const {
   constexpr int m3 = 3 * n;
   const std::span<const Piece> pieces = integrated_pieces(t);
 
   int slots = n;
   while (slots < slots_.cols() && slots_(t, slots) >= 0) ++slots;
-  Eigen::VectorXd f_e = Eigen::VectorXd::Zero(3 * slots);
-  Eigen::MatrixXd K_e;
-  if (assembler) K_e = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
+  // The element's force and matrix on its slots, in the caller's buffers: no allocation per tet.
+  auto f_e = buffers.f.head(3 * slots);
+  auto K_e = buffers.K.topLeftCorner(3 * slots, 3 * slots);
+  f_e.setZero();
+  if (assembler) K_e.setZero();
 
   Eigen::Matrix<double, n, 3> X;
   for (int a = 0; a < n; ++a) X.row(a) = mesh_.nodes.row(mesh_.tets(t, a));
@@ -411,19 +413,20 @@ CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMe
                                             Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
   CorotationStatistics stats;
   f_int = Eigen::VectorXd::Zero(3 * num_dof_nodes());
+  ElementBuffers buffers(slots_.cols());
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0) assemble_branch_tet(t, u, true, f_int, assembler, rhs_free);
-    else if (mesh_.order() == 1) assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
-    else assemble_tet<10>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
+    else if (mesh_.order() == 1) assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers);
+    else assemble_tet<10>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers);
   }
   return stats;
 }
 
 template <int n>
 double CutXfemModel::tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const {
-  constexpr int m3 = 3 * n;
-  Eigen::Matrix<double, n, 3> X;
-  for (int a = 0; a < n; ++a) X.row(a) = mesh_.nodes.row(mesh_.tets(t, a));
+  // The phantom element alone misses the branch functions' strain (chapter 5; not used by chapter 6).
+  if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0)
+    throw std::logic_error("CutXfemModel::energy: not implemented for tets with crack-tip functions");
   double energy = 0.0;
   for (const Piece& piece : integrated_pieces(t)) {
     Eigen::Matrix<double, n, 3> u_p; // the phantom element's nodal displacements, as in assemble_tet
@@ -433,13 +436,17 @@ double CutXfemModel::tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool c
       if (s >= 0) value += u.segment<3>(3 * slots_(t, s));
       u_p.row(a) = value.transpose();
     }
+    // 1/2 d^T K_q d without forming K_q (it is a time step's second assembly in chapter 6): the
+    // gradient of d is H = R^T F - I (the gradients satisfy sum_a X_a G_a^T = I), and for the
+    // isotropic K_q of add_stiffness_integrand, 1/2 d^T K_q d = weight (mu eps:eps + lambda/2
+    // tr(eps)^2) with eps = sym(H), the small-strain energy density of the corotated displacement.
     const auto point_energy = [&](const Eigen::Matrix<double, n, 3>& G, double weight) {
-      Eigen::Matrix<double, m3, m3> K_q = Eigen::Matrix<double, m3, m3>::Zero();
-      add_stiffness_integrand<n>(G, weight, material_.mu(), material_.lambda(), K_q);
+      const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + u_p.transpose() * G;
       Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-      if (corotated) R = element_rotation(Eigen::Matrix3d::Identity() + u_p.transpose() * G, rotation).R;
-      const Eigen::Matrix<double, m3, 1> d = corotated_displacement<n>(R, X, u_p);
-      return 0.5 * d.dot(K_q * d);
+      if (corotated) R = element_rotation(F, rotation).R;
+      const Eigen::Matrix3d H = R.transpose() * F - Eigen::Matrix3d::Identity();
+      const Eigen::Matrix3d eps = 0.5 * (H + H.transpose());
+      return weight * (material_.mu() * eps.squaredNorm() + 0.5 * material_.lambda() * eps.trace() * eps.trace());
     };
     if constexpr (n == 4) {
       double weight = 0.0;
@@ -463,13 +470,14 @@ void CutXfemModel::assemble_linear_stiffness(SparseAssembler& assembler, Eigen::
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3 * num_dof_nodes());
   Eigen::VectorXd f_int = zero;
   CorotationStatistics unused;
+  ElementBuffers buffers(slots_.cols());
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0)
       assemble_branch_tet(t, zero, false, f_int, &assembler, &rhs_free);
     else if (mesh_.order() == 1)
-      assemble_tet<4>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused);
+      assemble_tet<4>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused, buffers);
     else
-      assemble_tet<10>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused);
+      assemble_tet<10>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused, buffers);
   }
 }
 

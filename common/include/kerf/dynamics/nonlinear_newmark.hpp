@@ -13,6 +13,7 @@
 #include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace kerf {
 
@@ -66,12 +67,19 @@ struct NonlinearStepReport {
   int iterations = 0;             ///< linear solves
   double relative_residual = 0.0; ///< newton: the last one; frozen: 0 (not measured)
   bool converged = true;          ///< newton: whether it met the tolerance
+  int solver_iterations = 0;      ///< iterations of the linear solver summed over the step's solves (1 per direct solve)
+  /// Processor time (std::clock: not inflated by other programs on a shared machine) spent
+  /// building the solves' matrices A_ff, and factorising and solving: the benchmark's phases.
+  double matrix_seconds = 0.0;
+  double solve_seconds = 0.0;
 };
 
 /// Newmark in acceleration form (as newmark.hpp) on all DOFs: the free ones predicted and
 /// corrected by Newmark's updates, the prescribed ones set to the motion at t_{n+1}. The
 /// matrix of each solve is M_ff + gamma dt C_ff + beta dt^2 K_ff (K the step's tangent), its
-/// pattern analysed once.
+/// pattern analysed once. With C = alpha M + beta K_R that matrix is c_M M_ff + c_K K_ff, which
+/// the step writes straight into a pattern found once (StepMatrix below): no sparse sums or
+/// products per step, only one pass over the stored values.
 ///
 /// Damping is Rayleigh's on the current rotated stiffness, C = alpha M + beta K_R(u_n) (notes
 /// 6.3, as SOFA and Vega do; the papers do not say), rebuilt every step and held through the
@@ -99,9 +107,17 @@ public:
   NonlinearStepReport step(DynamicState& state);
   /// Books a step in the account: the state's energies, the step's works.
   void add_step(EnergyAccount& account, const DynamicState& state, const NonlinearStepReport& report) const;
+  /// Numeric factorisations (or preconditioner set-ups) of the run so far (LinearSolver::factorisations).
+  int factorisations() const { return solver_->factorisations(); }
 
 private:
   Eigen::SparseMatrix<double> free_block(const Eigen::SparseMatrix<double>& A) const { return P_ * A * Pt_; }
+  // A_ff = c_M M_ff + c_K K_ff in A_ff_, on the pattern of the free block of M + K, found at
+  // the first call and again whenever K's pattern changes (a new cut): for each stored entry of
+  // A_ff, where its M and its K value sit in their matrices' value arrays (-1: not stored).
+  const Eigen::SparseMatrix<double>& step_matrix(double c_M, double c_K, const Eigen::SparseMatrix<double>& K);
+  // C v = alpha M v + beta K_R v, without forming C.
+  Eigen::VectorXd damping_force(const Eigen::SparseMatrix<double>& K_R, const Eigen::VectorXd& v) const;
   // The full vector: `free` on the free DOFs, `prescribed`'s entries on the others.
   Eigen::VectorXd combine(const Eigen::VectorXd& free, const Eigen::VectorXd& prescribed) const;
   void solve(const Eigen::SparseMatrix<double>& A_ff, const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
@@ -115,6 +131,9 @@ private:
   Eigen::SparseMatrix<double> P_, Pt_; // picks the free DOFs: A_ff = P A P^T
   std::unique_ptr<LinearSolver> solver_;
   bool analysed_ = false;
+  Eigen::SparseMatrix<double> A_ff_;                 // the step's matrix, pattern fixed
+  std::vector<Eigen::Index> from_M_, from_K_;        // per stored entry of A_ff_: index into M's, K's values or -1
+  Eigen::Index pattern_K_nonzeros_ = -1;             // K.nonZeros() when the pattern was found
   mutable Eigen::VectorXd energy_u_;
   mutable double energy_value_ = 0.0;
 };

@@ -196,11 +196,17 @@ private:
                            SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const;
   // What tet t integrates: its split pieces, or the whole tet as one piece.
   std::span<const Piece> integrated_pieces(Eigen::Index t) const;
+  // An element force and matrix big enough for any tet's slots, allocated once per assembly.
+  struct ElementBuffers {
+    explicit ElementBuffers(Eigen::Index max_slots) : f(3 * max_slots), K(3 * max_slots, 3 * max_slots) {}
+    Eigen::VectorXd f;
+    Eigen::MatrixXd K;
+  };
   // One tet's forces (and tangent): linear (corotated false, R = I) or corotated.
   template <int n>
   void assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                     bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
-                    CorotationStatistics& stats) const;
+                    CorotationStatistics& stats, ElementBuffers& buffers) const;
 
   // One tet's share of energy().
   template <int n>
