@@ -10,9 +10,10 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/point_locator.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
-#include "kerf/quadrature/gauss_piece_rules.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
+
+#include "support/cut_body.hpp"
 
 #include <doctest/doctest.h>
 
@@ -22,10 +23,6 @@
 #include <vector>
 
 namespace {
-
-kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece, int degree) {
-  return kerf::subtet_rule(pieces, piece, degree);
-}
 
 // A cut body with branch functions, everything its model holds by reference kept alive.
 struct TipBody {
@@ -41,7 +38,8 @@ struct TipBody {
           int blending_degree = 6, int blending_depth = 3)
       : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
         fronts(kerf::find_crack_fronts(mesh, cuts)), branch(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, radius)),
-        functions{branch, fronts, front_rule, front_points, blending_degree, blending_depth}, model(mesh, material, pieces, branch.sign, subtets, &functions) {}
+        functions{branch, fronts, front_rule, front_points, blending_degree, blending_depth},
+        model(mesh, material, pieces, branch.sign, support::subtets, &functions) {}
 };
 
 // The slab [-0.3, 0.3]^2 x [0, 0.2] with the crack y = 0, x < 0 through its whole thickness: the
