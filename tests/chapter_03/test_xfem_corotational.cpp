@@ -4,6 +4,8 @@
 // XfemModel::assemble is the derivative of its forces.
 #include "xfem_test_support.hpp"
 
+#include "support/tangent_check.hpp"
+
 #include "kerf/corotation/corotational_model.hpp"
 #include "kerf/corotation/quasi_static_solver.hpp"
 #include "kerf/cut/split_mesh_along_cut.hpp"
@@ -38,14 +40,6 @@ Eigen::VectorXd two_sided(const kerf::XfemModel& model, const Above& side_above,
       u.segment<3>(3 * a_node) = (other - own) / kerf::shifted_enrichment(-sign, sign);
   }
   return u;
-}
-
-Eigen::MatrixXd tangent(const kerf::XfemModel& model, const Eigen::VectorXd& u, kerf::CorotationalTangent kind, Eigen::VectorXd& f) {
-  const kerf::DofMap all_free = kerf::make_dof_map(model.num_dof_nodes(), {});
-  kerf::SparseAssembler assembler(model.assembly_slots(), all_free);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(all_free.num_free);
-  model.assemble(u, kerf::RotationMethod::automatic, kind, f, &assembler, &rhs);
-  return Eigen::MatrixXd(assembler.matrix());
 }
 
 } // namespace
@@ -105,21 +99,12 @@ TEST_CASE("xfem corotational: the consistent tangent is the derivative of the in
   for (Eigen::Index i = 0; i < u.size(); ++i) u[i] += strain(rng);
 
   Eigen::VectorXd f;
-  const Eigen::MatrixXd K = tangent(model, u, kerf::CorotationalTangent::consistent, f);
-  const Eigen::MatrixXd K_warped = tangent(model, u, kerf::CorotationalTangent::warped, f);
+  const Eigen::MatrixXd K = support::assembled_tangent(model, u, kerf::CorotationalTangent::consistent, f);
+  const Eigen::MatrixXd K_warped = support::assembled_tangent(model, u, kerf::CorotationalTangent::warped, f);
   // Central differences with h = 1e-7 m: truncation (h / element size)^2 ~ 1e-11 relative,
   // round-off eps |K X| / h ~ 1e-16 * |K X| / 1e-7 ~ 1e-9 |K| (|X| ~ 0.1 m): well below 1e-6.
   const double h = 1e-7;
-  Eigen::MatrixXd K_fd(K.rows(), K.cols());
-  Eigen::VectorXd f_plus, f_minus;
-  for (Eigen::Index j = 0; j < u.size(); ++j) {
-    Eigen::VectorXd u_plus = u, u_minus = u;
-    u_plus[j] += h;
-    u_minus[j] -= h;
-    model.assemble(u_plus, kerf::RotationMethod::automatic, kerf::CorotationalTangent::consistent, f_plus, nullptr, nullptr);
-    model.assemble(u_minus, kerf::RotationMethod::automatic, kerf::CorotationalTangent::consistent, f_minus, nullptr, nullptr);
-    K_fd.col(j) = (f_plus - f_minus) / (2 * h);
-  }
+  const Eigen::MatrixXd K_fd = support::central_difference_tangent(model, u, h);
   const double consistent_error = (K - K_fd).norm() / K_fd.norm();
   const double warped_error = (K_warped - K_fd).norm() / K_fd.norm();
   MESSAGE("tangent vs central differences (" << u.size() << " DOFs): consistent " << consistent_error << ", warped " << warped_error);
@@ -141,7 +126,7 @@ TEST_CASE("xfem corotational: at rest the tangent is K^X, the linear energy is 1
   const Eigen::MatrixXd K_X(linear.matrix());
   Eigen::VectorXd f;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
-  const Eigen::MatrixXd K0 = tangent(model, zero, kerf::CorotationalTangent::consistent, f);
+  const Eigen::MatrixXd K0 = support::assembled_tangent(model, zero, kerf::CorotationalTangent::consistent, f);
   // At X the rotation is I and the stress 0: the consistent tangent is K^X up to round-off.
   CHECK((K0 - K_X).cwiseAbs().maxCoeff() <= 1e-12 * K_X.cwiseAbs().maxCoeff());
   CHECK(f.norm() <= 1e-12 * model.position_force_norm());

@@ -24,23 +24,7 @@
 
 namespace {
 
-// A cut body with branch functions, everything its model holds by reference kept alive.
-struct TipBody {
-  kerf::TetMesh mesh;
-  kerf::CutSurfaces cuts;
-  kerf::MeshPieces pieces;
-  kerf::CrackFronts fronts;
-  kerf::BranchEnrichment branch;
-  kerf::CrackTipFunctions functions;
-  kerf::CutXfemModel model;
-  TipBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::LinearMaterial& material,
-          kerf::TipEnrichmentRule rule, double radius, kerf::FrontRule front_rule = kerf::FrontRule::collapsed, int front_points = 0,
-          int blending_degree = 6, int blending_depth = 3)
-      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
-        fronts(kerf::find_crack_fronts(mesh, cuts)), branch(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, radius)),
-        functions{branch, fronts, front_rule, front_points, blending_degree, blending_depth},
-        model(mesh, material, pieces, branch.sign, support::subtets, &functions) {}
-};
+using support::TipBody;
 
 // The slab [-0.3, 0.3]^2 x [0, 0.2] with the crack y = 0, x < 0 through its whole thickness: the
 // straight front x = y = 0 along z runs through the middle of a row of elements (3 cells in x

@@ -1,14 +1,16 @@
 // A body cut by triangle-mesh cuts, with everything its XFEM model keeps alive (the model holds
-// the mesh, the pieces and the enrichment by reference), as the tests of chapters 4 and 6 build
-// it. The pieces are integrated with sub-tetrahedra of the degree the model asks for, exact for
+// the mesh, the pieces and the enrichment by reference), as the tests of chapters 4-6 build it.
+// The pieces are integrated with sub-tetrahedra of the degree the model asks for, exact for
 // every polynomial integrand, unless a test passes another rule.
 #pragma once
 
+#include "kerf/cut/crack_front.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/fem/linear_material.hpp"
 #include "kerf/mesh/triangle_surface.hpp"
 #include "kerf/quadrature/gauss_piece_rules.hpp"
+#include "kerf/xfem/branch_enrichment.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 
@@ -32,6 +34,24 @@ struct CutBody {
           const kerf::PieceRuleFunction& rule = subtets)
       : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
         enrichment(kerf::make_surface_enrichment(mesh, pieces)), model(mesh, material, pieces, enrichment, rule) {}
+};
+
+// A cut body with chapter 5's branch functions where its cuts end inside it.
+struct TipBody {
+  kerf::TetMesh mesh;
+  kerf::CutSurfaces cuts;
+  kerf::MeshPieces pieces;
+  kerf::CrackFronts fronts;
+  kerf::BranchEnrichment branch;
+  kerf::CrackTipFunctions functions;
+  kerf::CutXfemModel model;
+  TipBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::LinearMaterial& material,
+          kerf::TipEnrichmentRule rule, double radius, kerf::FrontRule front_rule = kerf::FrontRule::collapsed, int front_points = 0,
+          int blending_degree = 6, int blending_depth = 3)
+      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
+        fronts(kerf::find_crack_fronts(mesh, cuts)), branch(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, radius)),
+        functions{branch, fronts, front_rule, front_points, blending_degree, blending_depth},
+        model(mesh, material, pieces, branch.sign, subtets, &functions) {}
 };
 
 } // namespace support

@@ -71,6 +71,7 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
 
 Eigen::VectorXd lumped_gravity_load(const CutXfemModel& model, double density, const Eigen::Vector3d& g,
                                     LumpingScheme scheme, const PieceRuleFunction& rule) {
+  require_no_crack_tip_functions(model, "lumped_gravity_load");
   if (scheme == LumpingScheme::schoch_eq_81_82) return model.gravity_load(density, g);
   const TetMesh& mesh = model.mesh();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());

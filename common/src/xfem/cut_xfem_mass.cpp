@@ -2,12 +2,20 @@
 
 #include "kerf/fem/tet_mass.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace kerf {
 
+void require_no_crack_tip_functions(const CutXfemModel& model, const char* who) {
+  if (model.num_branch_nodes() > 0)
+    throw std::invalid_argument(std::string(who) + ": the mass has no rows for crack-tip functions (chapter 5 is static)");
+}
+
 std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Eigen::Index t, double density,
                                                    const PieceRuleFunction& rule) {
+  require_no_crack_tip_functions(model, "cut_xfem_piece_masses");
   const TetMesh& mesh = model.mesh();
   const MeshPieces& pieces = model.pieces();
   const int n = mesh.nodes_per_tet();
@@ -35,6 +43,7 @@ std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Ei
 }
 
 Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule) {
+  require_no_crack_tip_functions(model, "assemble_cut_xfem_mass");
   const TetMesh& mesh = model.mesh();
   const int n = mesh.nodes_per_tet();
   std::vector<Eigen::Triplet<double>> entries;

@@ -1,6 +1,7 @@
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include "kerf/corotation/corotated_element.hpp"
+#include "kerf/corotation/corotated_piece.hpp"
 #include "kerf/fem/tet_quadrature.hpp"
 #include "kerf/fem/tet_shape_functions.hpp"
 #include "kerf/fem/rigid_motion_check.hpp"
@@ -129,7 +130,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       return n + static_cast<int>(std::lower_bound(list.begin(), list.end(), k) - list.begin());
     };
     const auto new_piece = [&](int p, std::vector<Point> points) {
-      Piece piece{std::vector<int>(static_cast<std::size_t>(n)), std::move(points), {}, {}, 0};
+      Piece piece{std::vector<int>(static_cast<std::size_t>(n)), std::move(points), {}, {}, {}, {}, 0};
       for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, p);
       return piece;
     };
@@ -175,8 +176,24 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
           for (Eigen::Index j = 0; j < s; ++j) piece.branch_gradient.row(q).segment<3>(3 * j) = values.col(j).tail<3>().transpose();
         }
       }
+      // Each piece's stiffness and mean slot gradients, once: a front tet's rule has thousands of
+      // points, and Newton or a time step assembles the tet again and again.
+      const int slots = first_branch_slot_[static_cast<std::size_t>(t)] + 4 * static_cast<int>(branch_nodes.size());
+      Eigen::MatrixX3d g(slots, 3);
+      for (Piece& piece : data) {
+        piece.stiffness = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
+        piece.mean_gradient = Eigen::MatrixX3d::Zero(slots, 3);
+        double volume = 0.0;
+        for (std::size_t q = 0; q < piece.points.size(); ++q) {
+          branch_tet_gradients(t, piece, q, g);
+          add_stiffness_integrand(g, piece.points[q].weight, material.mu(), material.lambda(), piece.stiffness);
+          piece.mean_gradient += piece.points[q].weight * g;
+          volume += piece.points[q].weight;
+        }
+        if (volume > 0.0) piece.mean_gradient /= volume;
+      }
     } else if (list.empty()) {
-      whole_[static_cast<std::size_t>(t)] = {std::vector<int>(static_cast<std::size_t>(n), -1), standard_points(), {}, {}, 0};
+      whole_[static_cast<std::size_t>(t)] = {std::vector<int>(static_cast<std::size_t>(n), -1), standard_points(), {}, {}, {}, {}, 0};
     } else if (np == 1) {
       // One piece, the whole tet, on which some enrichment is 1: the tet's own rule.
       data.push_back(new_piece(0, standard_points()));
@@ -374,39 +391,86 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
   if (assembler) assembler->add_element_matrix(t, K_e, *rhs_free);
 }
 
-void CutXfemModel::assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, Eigen::VectorXd& f_int,
-                                       SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
-  if (corotated)
-    throw std::logic_error("corotational XFEM with crack-tip functions is not implemented: use the linear model");
+int CutXfemModel::num_slots(Eigen::Index t) const {
+  int slots = mesh_.nodes_per_tet();
+  while (slots < slots_.cols() && slots_(t, slots) >= 0) ++slots;
+  return slots;
+}
+
+void CutXfemModel::branch_tet_gradients(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::MatrixX3d& g) const {
   const int n = mesh_.nodes_per_tet();
   const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
-  int slots = first_branch;
-  while (slots < slots_.cols() && slots_(t, slots) >= 0) ++slots;
-  const double mu = material_.mu(), lambda = material_.lambda();
+  const Point& point = piece.points[q];
+  g.setZero();
+  for (int a = 0; a < n; ++a) {
+    g.row(a) += point.G.row(a);
+    const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
+    if (s >= 0) g.row(s) += point.G.row(a);
+  }
+  for (Eigen::Index j = 0; first_branch + j < g.rows(); ++j)
+    g.row(first_branch + j) = piece.branch_gradient.row(static_cast<Eigen::Index>(q)).segment<3>(3 * j);
+}
 
-  // At each point, one gradient per slot: the phantom element's G_a on node a's slot and on the
-  // slot of the sign enrichment active there, and each branch function's own gradient. The
-  // stiffness is then eq. (30) over all of them, K_e = sum_q w_q B_q^T C B_q.
-  Eigen::MatrixXd K_e = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
-  Eigen::MatrixX3d g(slots, 3);
-  for (const Piece& piece : integrated_pieces(t))
-    for (std::size_t q = 0; q < piece.points.size(); ++q) {
-      const Point& point = piece.points[q];
-      g.setZero();
-      for (int a = 0; a < n; ++a) {
-        g.row(a) += point.G.row(a);
-        const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
-        if (s >= 0) g.row(s) += point.G.row(a);
-      }
-      for (int j = 0; first_branch + j < slots; ++j)
-        g.row(first_branch + j) = piece.branch_gradient.row(static_cast<Eigen::Index>(q)).segment<3>(3 * j);
-      add_stiffness_integrand(g, point.weight, mu, lambda, K_e);
+void CutXfemModel::branch_tet_state(Eigen::Index t, const Eigen::VectorXd& u, Eigen::MatrixX3d& X, Eigen::MatrixX3d& q) const {
+  const int n = mesh_.nodes_per_tet();
+  const int slots = num_slots(t);
+  X = Eigen::MatrixX3d::Zero(slots, 3);
+  q.resize(slots, 3);
+  for (int a = 0; a < n; ++a) X.row(a) = mesh_.nodes.row(mesh_.tets(t, a));
+  for (int s = 0; s < slots; ++s) q.row(s) = u.segment<3>(3 * slots_(t, s)).transpose();
+}
+
+void CutXfemModel::assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                       bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                                       CorotationStatistics& stats) const {
+  const int slots = num_slots(t);
+  Eigen::MatrixX3d X, q;
+  branch_tet_state(t, u, X, q);
+  // K_e = sum over the pieces of eq. (30) with every slot's gradient (branch_tet_gradients),
+  // computed once in the constructor; corotated, each piece turned by its own rotation.
+  Eigen::VectorXd f_e = Eigen::VectorXd::Zero(3 * slots);
+  Eigen::MatrixXd K_e;
+  if (assembler) K_e = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
+  const Eigen::VectorXd q_vector = q.transpose().reshaped();
+  for (const Piece& piece : integrated_pieces(t)) {
+    if (corotated) {
+      double volume = 0.0;
+      for (const Point& point : piece.points) volume += point.weight;
+      if (!(volume > 0.0)) continue; // no volume, no force (and no mean gradient to turn by)
+      add_corotated_piece(piece.stiffness, piece.mean_gradient, mesh_.nodes_per_tet(), X, q, volume, rotation, tangent, f_e,
+                          assembler ? &K_e : nullptr, &stats);
+    } else {
+      f_e += piece.stiffness * q_vector;
+      if (assembler) K_e += piece.stiffness;
     }
-  Eigen::VectorXd u_e(3 * slots);
-  for (int s = 0; s < slots; ++s) u_e.segment<3>(3 * s) = u.segment<3>(3 * slots_(t, s));
-  const Eigen::VectorXd f_e = K_e * u_e;
+  }
   for (int s = 0; s < slots; ++s) f_int.segment<3>(3 * slots_(t, s)) += f_e.segment<3>(3 * s);
   if (assembler) assembler->add_element_matrix(t, K_e, *rhs_free);
+}
+
+double CutXfemModel::branch_tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const {
+  Eigen::MatrixX3d X, q;
+  branch_tet_state(t, u, X, q);
+  const Eigen::Index slots = q.rows();
+  const int n = mesh_.nodes_per_tet();
+  double energy = 0.0;
+  for (const Piece& piece : integrated_pieces(t)) {
+    // d as in corotated_piece.hpp (R = I: d = q up to a translation K annihilates).
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    if (corotated) {
+      Eigen::MatrixX3d x = q;
+      x.topRows(n) += X.topRows(n);
+      R = element_rotation(x.transpose() * piece.mean_gradient, rotation).R;
+    }
+    Eigen::VectorXd d(3 * slots);
+    for (Eigen::Index s = 0; s < slots; ++s) {
+      const Eigen::Vector3d x_s = s < n ? Eigen::Vector3d((X.row(s) - X.row(0) + q.row(s) - q.row(0)).transpose()) : Eigen::Vector3d(q.row(s).transpose());
+      const Eigen::Vector3d X_s = s < n ? Eigen::Vector3d((X.row(s) - X.row(0)).transpose()) : Eigen::Vector3d::Zero();
+      d.segment<3>(3 * s) = R.transpose() * x_s - X_s;
+    }
+    energy += 0.5 * d.dot(piece.stiffness * d);
+  }
+  return energy;
 }
 
 CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
@@ -415,7 +479,7 @@ CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMe
   f_int = Eigen::VectorXd::Zero(3 * num_dof_nodes());
   ElementBuffers buffers(slots_.cols());
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
-    if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0) assemble_branch_tet(t, u, true, f_int, assembler, rhs_free);
+    if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0) assemble_branch_tet(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
     else if (mesh_.order() == 1) assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers);
     else assemble_tet<10>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers);
   }
@@ -424,9 +488,8 @@ CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMe
 
 template <int n>
 double CutXfemModel::tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const {
-  // The phantom element alone misses the branch functions' strain (chapter 5; not used by chapter 6).
-  if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0)
-    throw std::logic_error("CutXfemModel::energy: not implemented for tets with crack-tip functions");
+  // The phantom element alone misses the branch functions' strain: those tets have their own.
+  if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0) return branch_tet_energy(t, u, corotated, rotation);
   double energy = 0.0;
   for (const Piece& piece : integrated_pieces(t)) {
     Eigen::Matrix<double, n, 3> u_p; // the phantom element's nodal displacements, as in assemble_tet
@@ -473,7 +536,7 @@ void CutXfemModel::assemble_linear_stiffness(SparseAssembler& assembler, Eigen::
   ElementBuffers buffers(slots_.cols());
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0)
-      assemble_branch_tet(t, zero, false, f_int, &assembler, &rhs_free);
+      assemble_branch_tet(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused);
     else if (mesh_.order() == 1)
       assemble_tet<4>(t, zero, RotationMethod::automatic, CorotationalTangent::warped, false, f_int, &assembler, &rhs_free, unused, buffers);
     else

@@ -9,6 +9,12 @@
 
 namespace kerf {
 
+/// Throws std::invalid_argument naming `who` if `model` has crack-tip functions: the masses of
+/// this file and of dynamics/lumped_mass.hpp are the phantom elements', with no rows for the
+/// branch DOFs (rho int N_a F_l N_b F_m would need the front rules of the stiffness), so chapter
+/// 6's dynamics refuses chapter 5's functions rather than give them no inertia.
+void require_no_crack_tip_functions(const CutXfemModel& model, const char* who);
+
 /// The consistent mass on all 3 num_dof_nodes() DOFs, no Dirichlet elimination:
 ///
 ///   M_e = sum_p T_p^T (rho int_p N^T N dV, times I_3) T_p,

@@ -92,6 +92,11 @@ struct CrackTipFunctions {
 /// adds the branch functions' gradients to the phantom element's, and integrates the tet by its
 /// front or blending rule (FrontRule). The branch nodes have no sign enrichments
 /// (BranchEnrichment::sign): a node is never both (Paulus section 3.3).
+///
+/// Corotation of a tet with branch functions (issue 10, item 7): one rotation per piece, that of
+/// the piece's mean deformation gradient, with the branch coefficients turned like the sign
+/// ones (corotated_piece.hpp says why not one per point: the branch gradients are singular at
+/// the front). The same on Tet4 and Tet10 meshes; every other tet keeps its rotation per point.
 class CutXfemModel : public QuasiStaticModel {
 public:
   /// @param mesh       Tet4 or Tet10 mesh, straight-edged (kept by reference)
@@ -119,6 +124,9 @@ public:
   /// element (R = I when `corotated` is false, the linear XFEM energy 1/2 u^T K^X u). For the
   /// polar rotation of an isotropic material, assemble()'s f_int is its gradient
   /// (corotated_element.hpp), which is why chapter 6's energy account uses it.
+  /// In a tet with branch functions the energy is 1/2 d^T K_p d per piece with the piece's one
+  /// rotation (corotated_piece.hpp), of which assemble()'s force is the gradient only up to the
+  /// strain's variation over the piece times its rotation (exactly when `corotated` is false).
   double energy(const Eigen::VectorXd& u, bool corotated, RotationMethod rotation = RotationMethod::automatic) const;
   /// The body-force load sum_p T_p^T int_p N^T rho g (3 num_dof_nodes()).
   Eigen::VectorXd gravity_load(double density, const Eigen::Vector3d& g) const;
@@ -186,14 +194,30 @@ private:
     // N_a (F_l - F_l(x_a)) (columns, in the order of its branch slots), and their gradients
     // (3 columns each). Empty elsewhere.
     Eigen::MatrixXd branch_value, branch_gradient;
+    // In a tet with branch nodes, computed once: the piece's linear stiffness on the tet's slots
+    // (eq. 30 over the piece) and each slot's gradient averaged over it (corotated_piece.hpp).
+    Eigen::MatrixXd stiffness;
+    Eigen::MatrixX3d mean_gradient;
     int side = 0; // +1 / -1 if the piece lies above / below the cut, for theta's sign (0: not known)
   };
+  // At point q of a piece of branch tet t: one gradient per slot (rows), the phantom element's
+  // G_a on node a's slot and on the slot of the sign enrichment active there, and each branch
+  // function's own gradient.
+  void branch_tet_gradients(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::MatrixX3d& g) const;
+  // The number of slots of tet t.
+  int num_slots(Eigen::Index t) const;
   // The branch functions of tet t at x on a piece on side `side` of the cut (0: not known):
   // one column per branch slot of the tet, values in row 0 and the gradient in rows 1-3.
   Eigen::Matrix<double, 4, Eigen::Dynamic> branch_functions_at(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
-  // A tet with branch nodes: the dynamic-size path of assemble_tet (linear only).
-  void assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, Eigen::VectorXd& f_int,
-                           SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const;
+  // A tet with branch nodes: the dynamic-size path of assemble_tet, linear or corotated with one
+  // rotation per piece (corotated_piece.hpp).
+  void assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                           bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                           CorotationStatistics& stats) const;
+  // The element's reference positions (node slots) and unknowns (all slots) of branch tet t.
+  void branch_tet_state(Eigen::Index t, const Eigen::VectorXd& u, Eigen::MatrixX3d& X, Eigen::MatrixX3d& q) const;
+  // Branch tet t's share of energy(): 1/2 d^T K_p d per piece.
+  double branch_tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const;
   // What tet t integrates: its split pieces, or the whole tet as one piece.
   std::span<const Piece> integrated_pieces(Eigen::Index t) const;
   // An element force and matrix big enough for any tet's slots, allocated once per assembly.
