@@ -175,11 +175,15 @@ TEST_CASE("the same scene without branch functions, and with the topological rul
   const auto [none_out, none] = run("none", R"({"enrichment": "none"})");
   CHECK(none_out.find("0 branch nodes") != std::string::npos);
   CHECK(none[0] < 0.5 * reference);
-  // The topological rule (radius 0): the 21 corners of the 12 tets the front crosses. Measured
-  // 8.1 mm, 10 % below the reference, which is still rising itself: within 15 %.
+  // The topological rule (radius 0): the corners of the tets the front passes through, all of
+  // them corners of the 6 hex cells it crosses, which have 4 x 7 = 28 corners (measured: 21).
+  // Its opening, measured 8.1 mm, is 10 % below the reference, which is still rising itself:
+  // within 15 %.
   const auto [topological_out, topological] = run("topological", R"({"enrichment": "branch", "radius": 0})");
   CHECK(topological_out.find("enrichment: branch, topological") != std::string::npos);
-  CHECK(number_after(topological_out, "topological; ") == 21);
+  const double topological_nodes = number_after(topological_out, "topological; ");
+  CHECK(topological_nodes > 0);
+  CHECK(topological_nodes <= 28);
   CHECK(std::abs(topological[0] - reference) < 0.15 * reference);
 }
 
