@@ -31,4 +31,4 @@ SCENE
 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/05_crack_tip" --quiet --scene "$out/none.json" --out "$out"
 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/05_crack_tip" --quiet --out "$out"
 xvfb-run -a "$build/bin/render_pieces" "$out/none_pieces.vtu" "$out/beam_crack_tip_pieces.vtu" "$here/open_cut_section.png" \
-  --warp 1 --color piece --clip-plane 0,0.03,0,0,1,0 --azimuth -90 --elevation 0 --zoom 1.6 --size 1200x900 --spacing 0.05
+  --warp 1 --color piece --clip-plane 0,0.03,0,0,1,0 --azimuth -90 --elevation 0 --zoom 3.5 --size 1200x800 --spacing 0.045
