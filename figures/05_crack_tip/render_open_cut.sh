@@ -5,7 +5,7 @@
 # XFEM views they write (NAME_pieces.vtu), moved by their displacement (warp factor 1), side by
 # side and clipped by the plane y = 0.03, seen straight on from y < 0 (x to the right, z up),
 # coloured by piece:
-#   open_cut_section.png  left: chapter 4's rule, the cut stops at x = 0.01; right: the demo with
+#   crack_tip_section.png  left: chapter 4's rule, the cut stops at x = 0.01; right: the demo with
 #                         branch functions, the gap closes at the front x = 0.015
 # The pictures are drawn off-screen through X, under xvfb-run (apt-get install xvfb; ./kerf.sh
 # installs it).
@@ -30,5 +30,5 @@ cat > "$out/none.json" <<SCENE
 SCENE
 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/05_crack_tip" --quiet --scene "$out/none.json" --out "$out"
 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/05_crack_tip" --quiet --out "$out"
-xvfb-run -a "$build/bin/render_pieces" "$out/none_pieces.vtu" "$out/beam_crack_tip_pieces.vtu" "$here/open_cut_section.png" \
+xvfb-run -a "$build/bin/render_pieces" "$out/none_pieces.vtu" "$out/beam_crack_tip_pieces.vtu" "$here/crack_tip_section.png" \
   --warp 1 --color piece --clip-plane 0,0.03,0,0,1,0 --azimuth -90 --elevation 0 --zoom 3.5 --size 1200x800 --spacing 0.045
