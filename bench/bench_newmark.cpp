@@ -4,6 +4,7 @@
                     (runs bench_newmark with OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1)
    By hand:         OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 bench_newmark --out bench_newmark.md
                     bench_newmark --quick      (the smallest block, a few steps: does it run?)
+                    bench_newmark --only 12    (the 10k-tet block alone)
 
    The block of issue 11, item 8: a 0.1 m cube of soft tissue (E = 5 kPa, nu = 0.45,
    rho = 1000 kg/m^3), corotational, per-piece lumped mass, Rayleigh damping C = 1 M + 0.005 K_R,
@@ -194,9 +195,14 @@ private:
 } // namespace
 
 int main(int argc, char** argv) {
-  const auto options = kerf_measure::parse_run_options(argc, argv, "bench_newmark [--quick] [--out FILE.md]", {});
+  // --only picks blocks by their cells per edge (e.g. --only 12: the 10k block alone), for a
+  // before/after comparison run back to back.
+  const auto options =
+      kerf_measure::parse_run_options(argc, argv, "bench_newmark [--quick] [--out FILE.md] [--only 6,8,12,17,26]", {}, {"6", "8", "12", "17", "26"});
   if (!options) return 2;
-  const std::vector<int> cells = options->quick ? std::vector<int>{4} : std::vector<int>{6, 8, 12, 17, 26};
+  std::vector<int> cells;
+  for (const int n : options->quick ? std::vector<int>{4} : std::vector<int>{6, 8, 12, 17, 26})
+    if (options->quick || options->runs(std::to_string(n))) cells.push_back(n);
   const int steps = options->quick ? 3 : 20;
 
   std::ostringstream table, csv;
@@ -204,7 +210,7 @@ int main(int argc, char** argv) {
          "iterations_per_step,factorisations,relative_error\n";
   table << "| tets | unknowns | strategy | ms/step | assembly | energy | matrix | solve | rest | CG it./step | factorisations | error |\n"
         << "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  Block(cells.front()).run({}, steps); // warm-up
+  Block(options->quick ? 4 : 6).run({}, steps); // warm-up
   for (int n : cells) {
     Block block(n);
     std::cerr << "bench_newmark: " << block.tets() << " tets, " << block.unknowns() << " unknowns\n";

@@ -1,6 +1,7 @@
 /* Kerf, chapter 6 study: the validation experiments of the cut body in time. Schoch's falling
    slice (Fig. 4: linear XFEM's ghost forces against corotational XFEM), Koschier's hinged cubes
-   (Fig. 10: XFEM against element duplication), frozen rotations against Newton per step, and the
+   (Fig. 10: XFEM against element duplication), the slab cut into slices and the block that
+   unfolds (Figs. 11-12, the same comparison), frozen rotations against Newton per step, and the
    central difference pushed above its critical step.
 
    Build:   cmake --preset release && cmake --build --preset release --target 06_cut_dynamics_study
@@ -8,7 +9,7 @@
    Sample runs:
      06_cut_dynamics_study --quick --out output/cut_dynamics_study_quick
      06_cut_dynamics_study --out figures/06_newmark
-     06_cut_dynamics_study --only hinge --out figures/06_newmark   (one part: slice, hinge, rotations, explicit)
+     06_cut_dynamics_study --only hinge --out figures/06_newmark   (one part: slice, hinge, slab, unfold, rotations, explicit)
 
    Description, files in --out:
      slice      Schoch's beam 0.03 x 0.06 x 0.2 m (E = 300 kPa, nu = 0.35, rho = 1070 kg/m^3), Tet4
@@ -34,6 +35,17 @@
                 mass of the slice at rest, its horizontal offset from the hinge, and the offset the
                 geometry predicts for duplication (the duplicated elements' centre of mass under
                 the hinge).
+     slab       Koschier's Fig. 11 as Kerf reads it: a plate of 61 x 1 x 11 blocks of 1 cm (six Tet4
+                a block) on the wall x = 0, gravity -z, E = 1e8 Pa, nu = 0.3, rho = 1000, cut along
+                its length by z = 1.1, 2.7, 4.9, 7.6 cm into five slices 1.1 to 3.4 cm thick; Rayleigh
+                alpha = 10 1/s, dt = 0.01 s, 4 s, Newton per step (to 1e-8), XFEM and duplication.
+                slab.csv: each slice's model and true volume, its centre of mass's drop at rest,
+                and Euler-Bernoulli's 0.6 rho g L^4 / (E t^2). --quick: 8 blocks long, 1 s.
+     unfold     Koschier's Fig. 12 as Kerf reads it: the block [0, 1] x [0, 0.25] x [0, 1] on the
+                hinge {x = 1/2, z = 1}, cut by z = 0.55 (x < 0.78) and z = 0.27 (x > 0.22) into a
+                zig-zag that unfolds, E = 100 kPa, alpha = 2 1/s, dt = 0.02 s, 20 s (--quick 3.6 s
+                of 0.06 s, not at rest). unfold.csv: the true and the model's centre of mass at rest
+                from the hinge, the model's volume; unfold_history.csv: the true one every 5 steps.
      rotations  the demo's flap (chapters/06_newmark: Tet4 3 x 6 x 19, cut at z = 0.15, per-piece
                 lumped mass, Rayleigh [3, 0.002]), 0.6 s, frozen rotations and Newton per step
                 against a Newton run at dt = 0.625 ms (Newton to a relative residual of 1e-10):
@@ -65,6 +77,7 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -170,6 +183,79 @@ void run_hinge(bool quick, const std::filesystem::path& out) {
                   "rotated %.2f deg, kinetic %.2e J\n",
                   c, duplication ? "duplication" : "xfem", com.x(), predicted, rotation, kinetic);
     }
+}
+
+void run_slab(bool quick, const std::filesystem::path& out) {
+  // Koschier: 61 x 11 x 1 blocks. Full: 61 x 1 x 11 blocks of 1 cm; --quick 8 x 1 x 11, 1 s.
+  const int nx = quick ? 8 : 61, nz = 11;
+  const double h = 0.01, L = nx * h, dt = 0.01, T = quick ? 1.0 : 4.0, alpha = 10.0;
+  const int steps = static_cast<int>(std::lround(T / dt));
+  // Five slices, thinnest at the bottom (so that the one that folds furthest folds away from the
+  // rest): 1.1, 1.6, 2.2, 2.7 and 3.4 blocks thick, the cuts off the mesh's planes.
+  const std::vector<double> cut_z{0.011, 0.027, 0.049, 0.076};
+  std::vector<double> bounds{0.0};
+  bounds.insert(bounds.end(), cut_z.begin(), cut_z.end());
+  bounds.push_back(nz * h);
+  std::ofstream csv(out / "slab.csv");
+  csv.precision(10);
+  csv << "method,slice,thickness,true_volume,model_volume,com_drop,beam_theory_drop,final_kinetic\n";
+  std::printf("slab: %d x 1 x %d blocks of %.0f cm (%d Tet4), clamped at x = 0, E = %.0e Pa, dt = %.2f s, %d steps, gamma = 0.6, "
+              "Rayleigh alpha = %.0f 1/s\n",
+              nx, nz, h * 100, 6 * nx * nz, cube_material.young, dt, steps, alpha);
+  for (const bool duplication : {false, true}) {
+    const auto body =
+        cut_dynamics::cut_slab(nx, nz, cut_z, cube_material, duplication ? cut_dynamics::duplication_rule : cut_dynamics::piece_rule);
+    const kerf::DynamicState state = cut_dynamics::settle(*body, alpha, dt, steps, [](int, const kerf::DynamicState&) {});
+    const double kinetic = 0.5 * state.v.dot(body->system.M * state.v);
+    for (std::size_t k = 0; k + 1 < bounds.size(); ++k) {
+      const double lo = bounds[k], hi = bounds[k + 1], thickness = hi - lo;
+      const auto in_slice = [lo, hi](const Eigen::Vector3d& x) { return x.z() > lo && x.z() < hi; };
+      const double drop = body->centre_of_mass(body->zero(), in_slice).z() - body->centre_of_mass(state.u, in_slice).z();
+      // Euler-Bernoulli, a cantilever of thickness t under its weight rho g A: w(x) = q x^2 (6 L^2
+      // - 4 L x + x^2) / (24 E I), whose mean over the length is q L^4 / (20 E I) = 0.6 rho g L^4 / (E t^2).
+      const double beam = 0.6 * cube_material.density * 9.81 * std::pow(L, 4) / (cube_material.young * thickness * thickness);
+      const double true_volume = cut_dynamics::model_volume(*body, in_slice, false), volume = cut_dynamics::model_volume(*body, in_slice, duplication);
+      csv << (duplication ? "duplication" : "xfem") << ',' << k << ',' << thickness << ',' << true_volume << ',' << volume << ',' << drop << ','
+          << beam << ',' << kinetic << '\n';
+      std::printf("  %-11s slice %zu (%.1f mm): model volume / true %.3f, centre of mass drop at rest %.4e m (beam theory %.4e m)\n",
+                  duplication ? "duplication" : "xfem", k, thickness * 1e3, volume / true_volume, drop, beam);
+    }
+    std::printf("  %-11s final kinetic energy %.2e J\n", duplication ? "duplication" : "xfem", kinetic);
+  }
+}
+
+void run_unfold(bool quick, const std::filesystem::path& out) {
+  const double dt = quick ? 0.06 : 0.02, T = quick ? 3.6 : 20.0, alpha = 2.0; // --quick: a few seconds, not at rest
+  const int steps = static_cast<int>(std::lround(T / dt));
+  const kerf::LinearMaterial soft{1e5, 0.3, 1000.0};
+  std::ofstream csv(out / "unfold.csv"), history(out / "unfold_history.csv");
+  csv.precision(12);
+  history.precision(10);
+  csv << "method,true_volume,model_volume,final_kinetic,com_x,com_z,com0_z,model_com_x\n";
+  history << "method,step,t,com_x,com_z\n";
+  std::printf("unfold: block 1 x 0.25 x 1 m on the hinge {x = 0.5, z = 1}, two cuts, E = %.0e Pa, dt = %.2f s, %d steps, gamma = 0.6, "
+              "Rayleigh alpha = %.0f 1/s\n",
+              soft.young, dt, steps, alpha);
+  const auto all = [](const Eigen::Vector3d&) { return true; };
+  for (const bool duplication : {false, true}) {
+    const char* name = duplication ? "duplication" : "xfem";
+    const kerf::PieceRuleFunction rule = duplication ? cut_dynamics::duplication_rule : cut_dynamics::piece_rule;
+    const auto body = cut_dynamics::unfolding_block(soft, rule);
+    const kerf::DynamicState state = cut_dynamics::settle(*body, alpha, dt, steps, [&](int n, const kerf::DynamicState& s) {
+      if (n % 5) return;
+      const Eigen::Vector3d com = body->centre_of_mass(s.u, all);
+      history << name << ',' << n << ',' << s.t << ',' << com.x() - 0.5 << ',' << com.z() << '\n';
+    });
+    const double kinetic = 0.5 * state.v.dot(body->system.M * state.v);
+    const Eigen::Vector3d com = body->centre_of_mass(state.u, all), com0 = body->centre_of_mass(body->zero(), all);
+    const Eigen::Vector3d model_com = body->model_centre_of_mass(state.u, rule);
+    const double true_volume = cut_dynamics::model_volume(*body, all, false), volume = cut_dynamics::model_volume(*body, all, duplication);
+    csv << name << ',' << true_volume << ',' << volume << ',' << kinetic << ',' << com.x() - 0.5 << ',' << com.z() << ',' << com0.z() << ',' << model_com.x() - 0.5
+        << '\n';
+    std::printf("  %-11s: model volume / true %.4f, centre of mass at rest x = %+.6e m from the hinge (the model's %+.6e), "
+                "z = %.6f m (from %.6f), kinetic %.2e J\n",
+                name, volume / true_volume, com.x() - 0.5, model_com.x() - 0.5, com.z(), com0.z(), kinetic);
+  }
 }
 
 /// The flap tip's displacement at every step of a run, with the solves and the time it took.
@@ -295,8 +381,8 @@ void run_explicit(bool quick, const std::filesystem::path& out) {
 } // namespace cut_dynamics_study
 
 int main(int argc, char** argv) {
-  const auto options = kerf_measure::parse_run_options(argc, argv, "06_cut_dynamics_study [--quick] [--out DIR] [--only slice,hinge,rotations,explicit]",
-                                                       "output/cut_dynamics_study", {"slice", "hinge", "rotations", "explicit"});
+  const auto options = kerf_measure::parse_run_options(argc, argv, "06_cut_dynamics_study [--quick] [--out DIR] [--only slice,hinge,slab,unfold,rotations,explicit]",
+                                                       "output/cut_dynamics_study", {"slice", "hinge", "slab", "unfold", "rotations", "explicit"});
   if (!options) return 2;
   try {
     namespace cs = cut_dynamics_study;
@@ -305,6 +391,8 @@ int main(int argc, char** argv) {
               << kerf_measure::now_text() << "\n";
     if (options->runs("slice")) cs::run_slice(options->quick, options->out);
     if (options->runs("hinge")) cs::run_hinge(options->quick, options->out);
+    if (options->runs("slab")) cs::run_slab(options->quick, options->out);
+    if (options->runs("unfold")) cs::run_unfold(options->quick, options->out);
     if (options->runs("rotations")) cs::run_rotations(options->quick, options->out);
     if (options->runs("explicit")) cs::run_explicit(options->quick, options->out);
   } catch (const std::exception& error) {

@@ -20,6 +20,8 @@
 #include <cmath>
 #include <numbers>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -139,6 +141,34 @@ struct CutDynamicBody {
     }
     return moment / volume;
   }
+
+  /// The centre of mass of the whole body as the model has it, deformed by u: every piece
+  /// integrated with `rule` (XFEM's: the true one; element duplication's: each piece a whole
+  /// element), moved by its own phantom field. At rest under gravity alone this is the point the
+  /// supports' reactions balance.
+  Eigen::Vector3d model_centre_of_mass(const Eigen::VectorXd& u, const kerf::PieceRuleFunction& rule) const {
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    double volume = 0.0;
+    for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+      const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(mesh, t);
+      if (!model.split(t)) {
+        const double V = tet_volume(mesh, t);
+        moment += V * (X.colwise().mean().transpose() + model.phantom_displacements(u, t, 0).colwise().mean().transpose());
+        volume += V;
+        continue;
+      }
+      const kerf::TetPieces& cut = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
+      for (int p = 0; p < pieces.num_pieces(t); ++p) {
+        const kerf::PieceQuadratureRule r = rule(X, cut, p, 1); // x + u is linear on a Tet4: degree 1 is exact
+        const Eigen::MatrixX3d U = model.phantom_displacements(u, t, p);
+        for (std::size_t q = 0; q < r.points.size(); ++q) {
+          moment += r.weights[q] * (r.points[q] + U.transpose() * model.shape_values(t, r.points[q]));
+          volume += r.weights[q];
+        }
+      }
+    }
+    return moment / volume;
+  }
 };
 
 /// The nodes of `mesh` with predicate(x) true.
@@ -209,6 +239,80 @@ inline std::unique_ptr<CutDynamicBody> hinged_cube(double c, const kerf::LinearM
   const kerf::TriangleSurface plane = kerf::rectangle_surface(kerf::RectangleCut({c, -0.5, -0.5}, {0, 2, 0}, {0, 0, 2}));
   return std::make_unique<CutDynamicBody>(std::move(mesh), std::vector<kerf::TriangleSurface>{plane}, material, rule, hinge,
                                           Eigen::Vector3d(0, 0, -9.81), true);
+}
+
+/// The volume the model gives the material on one side of the cut: XFEM each piece's own, element
+/// duplication (every piece a whole copy of its element) the whole tet for every piece.
+template <class Side> double model_volume(const CutDynamicBody& body, Side side, bool duplication) {
+  double volume = 0.0;
+  for (Eigen::Index t = 0; t < body.mesh.num_tets(); ++t) {
+    const double V = tet_volume(body.mesh, t);
+    if (!body.model.split(t)) {
+      if (side(Eigen::Vector3d(kerf::tet_corners(body.mesh, t).colwise().mean().transpose()))) volume += V;
+      continue;
+    }
+    const kerf::TetPieces& pieces = body.pieces.tets[static_cast<std::size_t>(body.pieces.entry[static_cast<std::size_t>(t)])];
+    for (int p = 0; p < body.pieces.num_pieces(t); ++p) {
+      const kerf::PieceQuadratureRule rule = kerf::subtet_rule(pieces, p, 1);
+      double w = 0.0;
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (std::size_t q = 0; q < rule.points.size(); ++q) w += rule.weights[q], x += rule.weights[q] * rule.points[q];
+      if (side(Eigen::Vector3d(x / w))) volume += duplication ? V : w;
+    }
+  }
+  return volume;
+}
+
+/// Damped Newmark (gamma = 0.6, beta = 0.3025, Rayleigh alpha), Newton per step to 1e-8, from rest:
+/// the state after `steps` steps; `each` is called with the state after every step.
+template <class Each> kerf::DynamicState settle(CutDynamicBody& body, double alpha, double dt, int steps, Each each) {
+  body.system.rayleigh_alpha = alpha;
+  kerf::NonlinearNewmarkSettings settings;
+  settings.update = kerf::RotationUpdate::newton;
+  settings.newmark = {0.3025, 0.6};
+  settings.tolerance = 1e-8; // the slab's steps stall at ~1e-9 near rest: round-off of its thin slices' stiff rows
+  kerf::NonlinearNewmarkIntegrator integrator(body.system, dt, settings);
+  kerf::DynamicState state = integrator.initial_state(body.zero(), body.zero(), 0.0);
+  for (int n = 1; n <= steps; ++n) {
+    const kerf::NonlinearStepReport report = integrator.step(state);
+    if (!report.converged)
+      throw std::runtime_error("a Newton step did not converge at step " + std::to_string(n) + " (relative residual " +
+                               std::to_string(report.relative_residual) + ")");
+    each(n, state);
+  }
+  return state;
+}
+
+/// Koschier's Fig. 11 slab, as Kerf reads it (the paper gives no dimensions, material or cut
+/// positions): a plate of nx x 1 x nz blocks of h = 1 cm (Kerf's box mesh: six Tet4 a block, not
+/// five), sticking out of the wall x = 0 (every node on it clamped) along x, 1 block thick in y,
+/// gravity -z, cut along its whole length by the horizontal planes z = cut_z[k] (through the
+/// wall, so each slice stays clamped) into slices of their own thickness in z: each slice is a
+/// cantilever whose bending stiffness grows like its thickness cubed and its weight like the
+/// thickness, so the thin ones fold further.
+inline std::unique_ptr<CutDynamicBody> cut_slab(int nx, int nz, const std::vector<double>& cut_z, const kerf::LinearMaterial& material,
+                                                const kerf::PieceRuleFunction& rule) {
+  const double h = 0.01;
+  kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {nx * h, h, nz * h}, {nx, 1, nz});
+  const std::vector<int> wall = nodes_where(mesh, [](const Eigen::Vector3d& x) { return x.x() == 0.0; });
+  std::vector<kerf::TriangleSurface> cuts;
+  for (const double z : cut_z)
+    cuts.push_back(kerf::rectangle_surface(kerf::RectangleCut({-h, -h, z}, {(nx + 2) * h, 0, 0}, {0, 3 * h, 0})));
+  return std::make_unique<CutDynamicBody>(std::move(mesh), std::move(cuts), material, rule, wall, Eigen::Vector3d(0, 0, -9.81), true);
+}
+
+/// Koschier's Fig. 12 block, as Kerf reads it: the block [0, 1] x [0, 0.25] x [0, 1] (Tet4 on
+/// 8 x 2 x 8 cells) hanging from the hinge {x = 1/2, z = 1} on its top face (the nodes on it
+/// clamped; a line of nodes carries no moment about it), gravity -z, and cut into a zig-zag
+/// that unfolds: the plane z = 0.55 through x in [-0.1, 0.78] (its lower part hangs from a neck
+/// of 0.22 at x = 1) and z = 0.27 through x in [0.22, 1.1] (the lowest part hangs from a neck of
+/// 0.22 at x = 0).
+inline std::unique_ptr<CutDynamicBody> unfolding_block(const kerf::LinearMaterial& material, const kerf::PieceRuleFunction& rule) {
+  kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 0.25, 1}, {8, 2, 8});
+  const std::vector<int> hinge = nodes_where(mesh, [](const Eigen::Vector3d& x) { return x.x() == 0.5 && x.z() == 1.0; });
+  const std::vector<kerf::TriangleSurface> cuts{kerf::rectangle_surface(kerf::RectangleCut({-0.1, -0.1, 0.55}, {0.88, 0, 0}, {0, 0.45, 0})),
+                                                kerf::rectangle_surface(kerf::RectangleCut({0.22, -0.1, 0.27}, {0.88, 0, 0}, {0, 0.45, 0}))};
+  return std::make_unique<CutDynamicBody>(std::move(mesh), cuts, material, rule, hinge, Eigen::Vector3d(0, 0, -9.81), true);
 }
 
 } // namespace cut_dynamics

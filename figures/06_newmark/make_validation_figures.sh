@@ -3,7 +3,8 @@
 # dynamics study (Schoch's falling slice, Koschier's hinged cubes, frozen rotations against
 # Newton, the central difference above its critical step; three or four minutes, most of it
 # the Newton reference run at dt = 0.625 ms), keeps its CSV files and printed summary here
-# (they are committed data) and draws the slice_, hinge_, rotations_ and explicit_ charts.
+# (they are committed data) and draws the slice_, hinge_, rotations_ and explicit_ charts
+# (the study's parts slab and unfold are make_duplication_figures.sh's).
 #
 #   figures/06_newmark/make_validation_figures.sh [BUILD_DIR]     (default: build/release)
 set -eu
@@ -15,7 +16,7 @@ cmake --build "$build" -j1 --target 06_cut_dynamics_study
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/06_cut_dynamics_study" --out "$out" | tee "$out/cut_dynamics_stdout.txt"
+OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$build/bin/06_cut_dynamics_study" --only slice,hinge,rotations,explicit --out "$out" | tee "$out/cut_dynamics_stdout.txt"
 for file in slice_history.csv hinge.csv rotations.csv explicit.csv explicit_growth.csv cut_dynamics_stdout.txt; do
   cp "$out/$file" "$here/$file"
 done

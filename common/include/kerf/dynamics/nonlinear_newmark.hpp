@@ -120,6 +120,7 @@ private:
   Eigen::VectorXd damping_force(const Eigen::SparseMatrix<double>& K_R, const Eigen::VectorXd& v) const;
   // The full vector: `free` on the free DOFs, `prescribed`'s entries on the others.
   Eigen::VectorXd combine(const Eigen::VectorXd& free, const Eigen::VectorXd& prescribed) const;
+  // x: the initial guess of an iterative solver if it has rhs's size, else zero; the solution.
   void solve(const Eigen::SparseMatrix<double>& A_ff, const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
   // W(u), remembered for the last u asked about: a step needs W at its start, which the step
   // before computed at its end, and the account asks again (a corotated W costs an assembly).
@@ -134,6 +135,7 @@ private:
   Eigen::SparseMatrix<double> A_ff_;                 // the step's matrix, pattern fixed
   std::vector<Eigen::Index> from_M_, from_K_;        // per stored entry of A_ff_: index into M's, K's values or -1
   Eigen::Index pattern_K_nonzeros_ = -1;             // K.nonZeros() when the pattern was found
+  Eigen::VectorXd last_change_; // a_f(t_n) - a_f(t_n-1): the first solve's guess for the next step's change
   mutable Eigen::VectorXd energy_u_;
   mutable double energy_value_ = 0.0;
 };
