@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -136,7 +137,7 @@ TEST_CASE("a slab whose nodes all carry the branch functions reproduces the Will
           kerf::solve_linear_cut_xfem(body.model, dofs, Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes()), kerf::SolverSettings{});
       REQUIRE(u.allFinite());
       const double error = largest_relative_error(body, u, exact, min, max);
-      MESSAGE("order " << order << ", mode " << mode.name << ": largest relative error " << error);
+      MESSAGE("order " << order << ", mode " << std::string(mode.name) << ": largest relative error " << error);
       // What is left is the quadrature error of the free equations (the branch integrands are
       // no polynomials): measured 1.3e-6 to 1.9e-6 on the Tet4, 1.8e-5 on the Tet10, and it falls
       // with the rules (blending_depth 1, 3, 4 gave 2.1e-5, 1.1e-6, 3.5e-7 on a 5 x 5 x 3 slab),

@@ -178,18 +178,31 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       }
       // Each piece's stiffness and mean slot gradients, once: a front tet's rule has thousands of
       // points, and Newton or a time step assembles the tet again and again.
+      // The stiffness from the gradient products A = sum_q w_q vec(g_q) vec(g_q)^T, one matrix
+      // product per chunk of points (tet_stiffness.hpp: stiffness_from_gradient_products).
       const int slots = first_branch_slot_[static_cast<std::size_t>(t)] + 4 * static_cast<int>(branch_nodes.size());
+      constexpr Eigen::Index chunk = 2048;
       Eigen::MatrixX3d g(slots, 3);
       for (Piece& piece : data) {
-        piece.stiffness = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
+        Eigen::MatrixXd A = Eigen::MatrixXd::Zero(3 * slots, 3 * slots);
         piece.mean_gradient = Eigen::MatrixX3d::Zero(slots, 3);
         double volume = 0.0;
-        for (std::size_t q = 0; q < piece.points.size(); ++q) {
-          branch_tet_gradients(t, piece, q, g);
-          add_stiffness_integrand(g, piece.points[q].weight, material.mu(), material.lambda(), piece.stiffness);
-          piece.mean_gradient += piece.points[q].weight * g;
-          volume += piece.points[q].weight;
+        const Eigen::Index m = static_cast<Eigen::Index>(piece.points.size());
+        for (Eigen::Index begin = 0; begin < m; begin += chunk) {
+          const Eigen::Index rows = std::min(chunk, m - begin);
+          Eigen::MatrixXd vec_g(rows, 3 * slots), weighted(rows, 3 * slots);
+          for (Eigen::Index r = 0; r < rows; ++r) {
+            const std::size_t q = static_cast<std::size_t>(begin + r);
+            const double w = piece.points[q].weight;
+            branch_tet_gradients(t, piece, q, g);
+            vec_g.row(r) = g.transpose().reshaped().transpose();
+            weighted.row(r) = w * vec_g.row(r);
+            piece.mean_gradient += w * g;
+            volume += w;
+          }
+          A.noalias() += weighted.transpose() * vec_g;
         }
+        piece.stiffness = stiffness_from_gradient_products(A, material.mu(), material.lambda());
         if (volume > 0.0) piece.mean_gradient /= volume;
       }
     } else if (list.empty()) {
