@@ -45,8 +45,8 @@ Eigen::Vector3d mode_scales(const StressIntensityFactors& K, const LinearMateria
 
 double kappa_plane_strain(const LinearMaterial& material) { return 3.0 - 4.0 * material.poisson; }
 
-FrontPolar polar_off_front(const StraightFrontFrame& front, const Eigen::Vector3d& x, const char* what) {
-  const FrontPolar p = front_polar(front, x);
+StraightFrontPolar polar_off_front(const StraightFrontFrame& front, const Eigen::Vector3d& x, const char* what) {
+  const StraightFrontPolar p = front_polar(front, x);
   if (!(p.r > 0.0)) throw std::invalid_argument(std::string("williams_") + what + ": the point lies on the front, where the field is singular");
   return p;
 }
@@ -54,7 +54,7 @@ FrontPolar polar_off_front(const StraightFrontFrame& front, const Eigen::Vector3
 /// The gradient in the frame, H_local(i, j) = du_i/dx_j with j in (a, b, c), of the field with
 /// mode scales C at p: d/dx_a = cos(theta) d/dr - sin(theta)/r d/dtheta and
 /// d/dx_b = sin(theta) d/dr + cos(theta)/r d/dtheta applied to sqrt(r) f(theta); d/dx_c = 0.
-Eigen::Matrix3d local_gradient(const FrontPolar& p, const ModeFactors& m, const Eigen::Vector3d& C) {
+Eigen::Matrix3d local_gradient(const StraightFrontPolar& p, const ModeFactors& m, const Eigen::Vector3d& C) {
   const double st = std::sin(p.theta), ct = std::cos(p.theta), inv_sqrt_r = 1.0 / std::sqrt(p.r);
   const auto d_da = [&](const Angular& g) { return inv_sqrt_r * (0.5 * ct * g.f - st * g.df); };
   const auto d_db = [&](const Angular& g) { return inv_sqrt_r * (0.5 * st * g.f + ct * g.df); };
@@ -69,7 +69,7 @@ Eigen::Matrix3d local_gradient(const FrontPolar& p, const ModeFactors& m, const 
 }
 
 /// The stress in the frame at p, from the textbook's table (see the header).
-Eigen::Matrix3d local_stress(const FrontPolar& p, const StressIntensityFactors& K, double nu) {
+Eigen::Matrix3d local_stress(const StraightFrontPolar& p, const StressIntensityFactors& K, double nu) {
   const double t = p.theta, scale = 1.0 / std::sqrt(2.0 * std::numbers::pi * p.r);
   const double s = std::sin(t / 2), c = std::cos(t / 2), s3 = std::sin(1.5 * t), c3 = std::cos(1.5 * t);
   const double sI = scale * K.K_I, sII = scale * K.K_II, sIII = scale * K.K_III;
@@ -97,9 +97,9 @@ StraightFrontFrame make_straight_front_frame(const Eigen::Vector3d& origin, cons
   return frame;
 }
 
-FrontPolar front_polar(const StraightFrontFrame& front, const Eigen::Vector3d& x) {
+StraightFrontPolar front_polar(const StraightFrontFrame& front, const Eigen::Vector3d& x) {
   const Eigen::Vector3d y = front.local(x);
-  FrontPolar p;
+  StraightFrontPolar p;
   p.r = std::hypot(y[0], y[1]);
   p.theta = (y[1] == 0.0 && y[0] < 0.0) ? std::numbers::pi : std::atan2(y[1], y[0]);
   return p;
@@ -107,7 +107,7 @@ FrontPolar front_polar(const StraightFrontFrame& front, const Eigen::Vector3d& x
 
 Eigen::Vector3d williams_displacement(const StraightFrontFrame& front, const StressIntensityFactors& K, const LinearMaterial& material,
                                       const Eigen::Vector3d& x) {
-  const FrontPolar p = front_polar(front, x);
+  const StraightFrontPolar p = front_polar(front, x);
   const ModeFactors m = mode_factors(p.theta, kappa_plane_strain(material));
   const Eigen::Vector3d C = mode_scales(K, material);
   const double sqrt_r = std::sqrt(p.r);
@@ -118,18 +118,18 @@ Eigen::Vector3d williams_displacement(const StraightFrontFrame& front, const Str
 
 Eigen::Matrix3d williams_displacement_gradient(const StraightFrontFrame& front, const StressIntensityFactors& K,
                                                const LinearMaterial& material, const Eigen::Vector3d& x) {
-  const FrontPolar p = polar_off_front(front, x, "displacement_gradient");
+  const StraightFrontPolar p = polar_off_front(front, x, "displacement_gradient");
   return front.R * local_gradient(p, mode_factors(p.theta, kappa_plane_strain(material)), mode_scales(K, material)) * front.R.transpose();
 }
 
 Eigen::Matrix3d williams_stress(const StraightFrontFrame& front, const StressIntensityFactors& K, const LinearMaterial& material,
                                 const Eigen::Vector3d& x) {
-  const FrontPolar p = polar_off_front(front, x, "stress");
+  const StraightFrontPolar p = polar_off_front(front, x, "stress");
   return front.R * local_stress(p, K, material.poisson) * front.R.transpose();
 }
 
 WilliamsUnitFields williams_unit_fields(const StraightFrontFrame& front, const LinearMaterial& material, const Eigen::Vector3d& x) {
-  const FrontPolar p = polar_off_front(front, x, "unit_fields");
+  const StraightFrontPolar p = polar_off_front(front, x, "unit_fields");
   const ModeFactors m = mode_factors(p.theta, kappa_plane_strain(material));
   const double unit = 1.0 / (2.0 * material.mu() * std::sqrt(2.0 * std::numbers::pi));
   WilliamsUnitFields fields;

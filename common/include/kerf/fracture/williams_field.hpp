@@ -49,11 +49,11 @@ struct StressIntensityFactors {
 /// Polar coordinates about the front: r = sqrt(x_a^2 + x_b^2) and theta = atan2(x_b, x_a), except
 /// that a point on the cut faces behind the front (x_b = 0, x_a < 0), where the field has two
 /// values, takes the + side's theta = pi whatever the sign of the zero.
-struct FrontPolar {
+struct StraightFrontPolar {
   double r = 0.0;
   double theta = 0.0;
 };
-FrontPolar front_polar(const StraightFrontFrame& front, const Eigen::Vector3d& x);
+StraightFrontPolar front_polar(const StraightFrontFrame& front, const Eigen::Vector3d& x);
 
 /// The Williams displacement at x (m), in global coordinates: R (u_a, u_b, u_c).
 Eigen::Vector3d williams_displacement(const StraightFrontFrame& front, const StressIntensityFactors& K, const LinearMaterial& material,
