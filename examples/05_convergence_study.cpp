@@ -25,6 +25,8 @@
                n = 9, 17, 33: error against cost, for the default radius;
      sif       K_I, K_II by the interaction integral for modes I, II and mixed (K_II / K_I = -0.6)
                on geometric Tet4 meshes n = 9, 17, 33;
+     sif_radius  K for the three modes with r_e = 0.2 m and 0.35 m on n = 9, 17 (0.35 m puts the
+               interaction integral's ring, 0.1 to 0.3 m, where every node is branch enriched);
      gripped   the boundary as the scene's displacement_file prescribes it (the enrichments of a
                boundary node held at 0): the crack's mouth closed where the exact field opens it.
    It writes convergence.csv (one row per run) into the --out folder and prints each row; --quick
@@ -102,7 +104,7 @@ void write_csv(const std::vector<Row>& rows, const std::filesystem::path& out) {
   for (const Row& r : rows) {
     const ws::Setup& s = r.setup;
     const bool geometric = s.enrichment == ws::TipEnrichment::geometric;
-    const bool has_K = r.part == "sif" || r.part == "ladder";
+    const bool has_K = r.part == "sif" || r.part == "ladder" || r.part == "sif_radius";
     csv << r.part << ',' << ws::name(s.enrichment) << ',' << s.order << ','
         << (s.boundary == ws::BoundaryEnrichments::interpolated ? "interpolated" : "gripped") << ',' << s.cells << ',' << r.h << ','
         << (r.radius_rule.empty() ? "NaN" : r.radius_rule) << ',' << (geometric ? s.radius : NAN) << ',' << s.K.K_I << ',' << s.K.K_II
@@ -119,7 +121,7 @@ void write_csv(const std::vector<Row>& rows, const std::filesystem::path& out) {
 
 int main(int argc, char** argv) {
   const auto options = kerf_measure::parse_run_options(argc, argv, "05_convergence_study [--quick] [--out DIR] [--only PARTS]",
-                                                       "output/convergence_study", {"rules", "small", "ladder", "tet10", "radius", "sif", "gripped"});
+                                                       "output/convergence_study", {"rules", "small", "ladder", "tet10", "radius", "sif", "sif_radius", "gripped"});
   if (!options) return 2;
   try {
     namespace cs = convergence_study;
@@ -184,6 +186,17 @@ int main(int argc, char** argv) {
           s.K = K;
           rows.push_back(cs::run("sif", s, "0.1m", true));
         }
+    // K against the radius: with r_e beyond the domain's outer radius (0.3 m) the interaction
+    // integral's ring lies where every node carries the branch functions.
+    if (options->runs("sif_radius"))
+      for (const kerf::StressIntensityFactors K : {kerf::StressIntensityFactors{1.0e4, 0.0, 0.0}, kerf::StressIntensityFactors{0.0, 1.0e4, 0.0},
+                                                    kerf::StressIntensityFactors{1.0e4, -0.6e4, 0.0}})
+        for (const int n : short_ladder)
+          for (const auto& [rule, radius] : std::vector<std::pair<std::string, double>>{{"0.2m", 0.2}, {"0.35m", 0.35}}) {
+            ws::Setup s = setup(n, 1, ws::TipEnrichment::geometric, radius);
+            s.K = K;
+            rows.push_back(cs::run("sif_radius", s, rule, true));
+          }
     if (options->runs("gripped"))
       for (const ws::TipEnrichment e : {ws::TipEnrichment::none, ws::TipEnrichment::geometric})
         for (const int n : short_ladder) {
