@@ -2,7 +2,7 @@
 # mode-I field on the boundary of the cracked slab. Left: the relative L2 error against the cell
 # size h for no branch functions, topological and geometric (r_e = 0.1 m) enrichment, Tet4
 # (lines) and Tet10 (open points). Middle: the relative energy error. Right: the geometric
-# radius against cost on the three finest radius meshes (relative L2 error against unknowns).
+# radius against cost on n = 9 and 17 (relative L2 error against unknowns).
 set terminal pngcairo size 1650,560 enhanced font "DejaVu Sans,11" linewidth 1.5
 set datafile separator ","
 set datafile missing NaN
@@ -25,7 +25,7 @@ plot "convergence.csv" using (pick("ladder", "none", 1)):($15/$16) w lp pt 9 lc 
      "" using (pick("tet10", "none", 2)):($15/$16) w lp pt 8 dt 2 lc rgb "#2ca02c" t "none, Tet10", \
      "" using (pick("tet10", "topological", 2)):($15/$16) w lp pt 4 dt 2 lc rgb "#1f77b4" t "topological, Tet10", \
      "" using (pick("tet10", "geometric", 2)):($15/$16) w lp pt 6 dt 2 lc rgb "#d62728" t "geometric, Tet10", \
-     [0.015:0.2] 0.3*x**2 dt 3 lc rgb "#777777" t "h^2", [0.015:0.2] 0.12*x**0.5 dt 4 lc rgb "#777777" t "h^{1/2}"
+     [0.02:0.25] 2.0*x**2 dt 3 lc rgb "#777777" t "h^2", [0.02:0.25] 0.45*x dt 4 lc rgb "#777777" t "h"
 set title "relative energy error"
 set ylabel "||u_h - u||_E / ||u||_E"
 plot "convergence.csv" using (pick("ladder", "none", 1)):($17/$18) w lp pt 9 lc rgb "#2ca02c" t "none, Tet4", \
@@ -34,8 +34,8 @@ plot "convergence.csv" using (pick("ladder", "none", 1)):($17/$18) w lp pt 9 lc 
      "" using (pick("tet10", "none", 2)):($17/$18) w lp pt 8 dt 2 lc rgb "#2ca02c" t "none, Tet10", \
      "" using (pick("tet10", "topological", 2)):($17/$18) w lp pt 4 dt 2 lc rgb "#1f77b4" t "topological, Tet10", \
      "" using (pick("tet10", "geometric", 2)):($17/$18) w lp pt 6 dt 2 lc rgb "#d62728" t "geometric, Tet10", \
-     [0.015:0.2] 1.2*x dt 3 lc rgb "#777777" t "h", [0.015:0.2] 0.5*x**0.5 dt 4 lc rgb "#777777" t "h^{1/2}"
-set title "geometric radius against cost (n = 9, 17, 33)"
+     [0.02:0.25] 5.0*x dt 3 lc rgb "#777777" t "h", [0.02:0.25] 2.5*x**0.5 dt 4 lc rgb "#777777" t "h^{1/2}"
+set title "geometric radius against cost (n = 9, 17)"
 set xlabel "unknowns"
 set ylabel "||u_h - u|| / ||u||"
 radius(rule) = (strcol(1) eq "radius" && strcol(7) eq rule) ? column(11) : NaN
