@@ -42,12 +42,12 @@ double rate(double e_coarse, double e_fine, double h_coarse, double h_fine) { re
 TEST_CASE("geometric enrichment converges fastest in L2; without branch functions the L2 rate is h^1 and the error largest") {
   // Measured on n = 9, 17 (examples/05_convergence_study.cpp, parts "small" and "ladder";
   // figures/05_crack_tip/convergence.md), relative L2 errors and rates:
-  //   none         4.51e-2, 2.34e-2  rate 1.04   (2.3e-2 -> 1.3e-2 on n = 33: 0.88)
-  //   topological  1.90e-2, 7.36e-3  rate 1.49   (-> 3.0e-3 on n = 33: 1.35)
-  //   geometric    1.90e-2, 6.84e-3  rate 1.60   (-> 2.1e-3 on n = 33: 1.81, towards h^2)
+  //   none         4.51e-2, 2.34e-2  rate 1.04   (on to n = 33, 65: 0.88, 0.94)
+  //   topological  1.90e-2, 7.36e-3  rate 1.49   (1.35, 1.04: back to h^1)
+  //   geometric    1.90e-2, 6.84e-3  rate 1.60   (1.81, 1.75: levelling off below h^2, see convergence.md)
   // energy rates 0.65, 0.60, 0.76. These meshes are pre-asymptotic for geometric enrichment
-  // (r_e = 0.1 m is 0.9 h on n = 9, 1.7 h on n = 17): its h^2 shows only from n = 17 to 33,
-  // which takes minutes, too long for a test. The test asserts the ordering and the rates these
+  // (r_e = 0.1 m is 0.9 h on n = 9, 1.7 h on n = 17): its best rate shows only from n = 17 to
+  // 33 and 65, which takes minutes, too long for a test. The test asserts the ordering and the rates these
   // two meshes do show, each bound between the measured value and the neighbouring case's so
   // that a change that lost the branch functions (geometric falling to topological's 1.49 or
   // to none's 1.04) or the enrichment (none's h^1 rising) fails.
