@@ -689,28 +689,45 @@ std::vector<UnheldPiece> cut_xfem_unheld_pieces(const CutXfemModel& model, const
   return unheld_pieces(phantom.mesh, phantom_dofs, phantom.piece_volume, phantom.piece_point);
 }
 
+int CutXfemModel::piece_at(Eigen::Index t, const Eigen::Vector3d& x) const {
+  if (!split(t) || pieces_.num_pieces(t) <= 1) return 0;
+  const TetPieces& tp = pieces_.tets[static_cast<std::size_t>(pieces_.entry[static_cast<std::size_t>(t)])];
+  const std::vector<int> found = pieces_containing(tp, x, 1e-12 * tp.diameter);
+  if (found.empty()) return -1;
+  // A point on the cut lies in two or more pieces: take one above a cut (H(0) = +1, as for
+  // the home part of a node on the cut, surface_enrichment.hpp), else the first.
+  const auto above_a_cut = [&](int q) {
+    const std::vector<PieceBoundaryPolygon>& boundary = tp.pieces[static_cast<std::size_t>(q)].boundary;
+    return std::any_of(boundary.begin(), boundary.end(), [](const PieceBoundaryPolygon& b) { return b.on_cut && b.cut_side > 0; });
+  };
+  const auto above = std::find_if(found.begin(), found.end(), above_a_cut);
+  return above != found.end() ? *above : found.front();
+}
+
 Eigen::Vector3d CutXfemModel::displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const {
-  const Corners X = tet_corners(mesh_, t);
-  const Eigen::Vector3d xi = corner_jacobian(X).inverse() * (x - X.row(0).transpose());
-  int p = 0;
-  if (split(t) && pieces_.num_pieces(t) > 1) {
-    const TetPieces& tp = pieces_.tets[static_cast<std::size_t>(pieces_.entry[static_cast<std::size_t>(t)])];
-    const std::vector<int> found = pieces_containing(tp, x, 1e-12 * tp.diameter);
-    if (found.empty()) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-    // A point on the cut lies in two or more pieces: take one above a cut (H(0) = +1, as for
-    // the home part of a node on the cut, surface_enrichment.hpp), else the first.
-    const auto above_a_cut = [&](int q) {
-      const std::vector<PieceBoundaryPolygon>& boundary = tp.pieces[static_cast<std::size_t>(q)].boundary;
-      return std::any_of(boundary.begin(), boundary.end(), [](const PieceBoundaryPolygon& b) { return b.on_cut && b.cut_side > 0; });
-    };
-    const auto above = std::find_if(found.begin(), found.end(), above_a_cut);
-    p = above != found.end() ? *above : found.front();
-  }
+  const int p = piece_at(t, x);
+  if (p < 0) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   const Eigen::MatrixX3d u_p = phantom_displacements(u, t, p);
-  Eigen::Vector3d value =
-      mesh_.order() == 1 ? Eigen::Vector3d((tet4_shape(xi).transpose() * u_p).transpose()) : Eigen::Vector3d((tet10_shape(xi).transpose() * u_p).transpose());
+  Eigen::Vector3d value = (shape_values(t, x).transpose() * u_p).transpose();
   for (const auto& [node, phi] : branch_values_at(t, p, x)) value += phi * u.segment<3>(3 * node);
   return value;
+}
+
+Eigen::Matrix3d CutXfemModel::displacement_gradient_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const {
+  const int p = piece_at(t, x);
+  if (p < 0) return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const Corners X = tet_corners(mesh_, t);
+  const Eigen::Matrix3d J_inverse = corner_jacobian(X).inverse();
+  const Eigen::MatrixX3d G = mesh_.order() == 1 ? Eigen::MatrixX3d(tet4_shape_gradients() * J_inverse)
+                                                : Eigen::MatrixX3d(tet10_shape_gradients(J_inverse * (x - X.row(0).transpose())) * J_inverse);
+  // H_ij = sum_a u_p,a,i dN_a/dx_j: the phantom element's gradient, then the branch functions'.
+  Eigen::Matrix3d H = phantom_displacements(u, t, p).transpose() * G;
+  const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
+  if (first_branch < 0) return H;
+  const Eigen::Matrix<double, 4, Eigen::Dynamic> phi = branch_functions_at(t, x, integrated_pieces(t)[static_cast<std::size_t>(p)].side);
+  for (Eigen::Index j = 0; j < phi.cols(); ++j)
+    H += u.segment<3>(3 * slots_(t, first_branch + static_cast<int>(j))) * phi.block<3, 1>(1, j).transpose();
+  return H;
 }
 
 DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions, double sliver_fraction) {

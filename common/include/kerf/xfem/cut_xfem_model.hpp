@@ -133,6 +133,10 @@ public:
   /// The displacement at x (m) in tet t, on the piece that holds x (one above the cut, if x lies
   /// on the cut); NaN if x is not in tet t.
   Eigen::Vector3d displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const;
+  /// Its gradient du_i/dx_j (3x3) at x, on the same piece: the phantom element's, plus the
+  /// branch functions' where they act (the interaction integral and the energy norm read it);
+  /// NaN if x is not in tet t.
+  Eigen::Matrix3d displacement_gradient_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const;
   /// The branch functions acting at x (m) on piece p of tet t: for each, its DOF node and its
   /// value N_a(x) (F_l(x) - F_l(x_a)); empty where no branch node acts.
   std::vector<std::pair<int, double>> branch_values_at(Eigen::Index t, int p, const Eigen::Vector3d& x) const;
@@ -209,6 +213,9 @@ private:
   // The branch functions of tet t at x on a piece on side `side` of the cut (0: not known):
   // one column per branch slot of the tet, values in row 0 and the gradient in rows 1-3.
   Eigen::Matrix<double, 4, Eigen::Dynamic> branch_functions_at(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
+  // The piece of tet t that holds x (one above the cut if x lies on it; 0 for a tet integrated
+  // whole), -1 if x is not in the tet.
+  int piece_at(Eigen::Index t, const Eigen::Vector3d& x) const;
   // A tet with branch nodes: the dynamic-size path of assemble_tet, linear or corotated with one
   // rotation per piece (corotated_piece.hpp).
   void assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,

@@ -5,9 +5,11 @@
 /// Geometric enrichment (Laborde et al. 2005, Bechet et al. 2005) gives the branch functions to
 /// every node within r_e of the front. The optimal rate needs r_e fixed while h shrinks; too large
 /// an r_e costs 12 unknowns per node and the expensive near-front quadrature in every tet it
-/// reaches. The rule below is the first choice; chapter 5's convergence study
-/// (examples/05_convergence_study.cpp, figures/05_crack_tip/convergence.md) measures error
-/// against cost over radii and states why the default is what it is.
+/// reaches. The rule: twice the mean edge of the tets the front crosses (two rings of elements),
+/// chosen by chapter 5's convergence study (examples/05_convergence_study.cpp,
+/// figures/05_crack_tip/convergence.md), which measures error against cost over radii: the
+/// .cpp gives the numbers. A radius fixed in metres (the scene's "radius") is what restores the
+/// optimal rate under refinement and what K by the interaction integral needs.
 #pragma once
 
 #include "kerf/cut/crack_front.hpp"
