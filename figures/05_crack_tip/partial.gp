@@ -9,8 +9,10 @@ set xlabel 'distance ahead of the front along the line (mm)'
 set ylabel 'opening |[u]| (mm)'
 pick(c, t) = (strcol(1) eq c && strcol(2) eq t) ? 1000 * $4 : NaN
 set multiplot layout 1,3
-do for [c in "half_disc sine_front declining_sine"] {
-  set title c eq "half_disc" ? "half disc R = 12 mm (line y = 0.03)" : (c eq "sine_front" ? "plane, front x = 15 + 4 sin(2 pi y / 60) mm (y = 15 mm)" : "declining sine blade, front x = 15 mm (y = 15 mm)")
+titles = "'half disc R = 12 mm (line y = 30 mm)' 'plane, front x = 15 + 4 sin(2 pi y / 60) mm (line y = 15 mm)' 'declining sine blade, front x = 15 mm (line y = 15 mm)'"
+do for [i = 1:3] {
+  c = word("half_disc sine_front declining_sine", i)
+  set title word(titles, i)
   plot 'partial.csv' using (pick(c, "heaviside")):(1000*$5) with lines lw 2 title 'Heaviside only', \
        '' using (pick(c, "geometric")):(1000*$5) with lines lw 2 title 'geometric branch'
 }

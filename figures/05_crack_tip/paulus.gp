@@ -11,8 +11,10 @@ set ylabel 'relative L2 error against the conforming Tet10 6x12x40'
 set key bottom left
 set multiplot layout 1,2
 pick(load, method) = (strcol(1) eq load && strcol(2) eq method) ? $4 : NaN
-do for [load in "gravity tip_traction"] {
-  set title load eq "gravity" ? "gravity 9.81 m/s^2 along +x" : "tip traction: 1 N along +z on the face z = 0.2"
+titles = "'gravity 9.81 m/s^2 along +x' 'tip traction: 1 N along +z on the face z = 0.2'"
+do for [i = 1:2] {
+  load = word("gravity tip_traction", i)
+  set title word(titles, i)
   plot 'paulus.csv' using (pick(load, "conforming4")):6 smooth unique with linespoints pt 4 title 'conforming Tet4', \
        '' using (pick(load, "conforming10")):6 smooth unique with linespoints pt 5 title 'conforming Tet10', \
        '' using (pick(load, "xfem_heaviside")):6 smooth unique with linespoints pt 6 title 'XFEM Tet4, Heaviside only', \
