@@ -135,6 +135,16 @@ double summed_front_in_tets(const kerf::TetMesh& mesh, const kerf::CrackFronts& 
 // so 3e-3 separates the two.
 constexpr double williams_tolerance = 3e-3, patch_tolerance = 3e-3;
 
+// The patch test (topological rule) and Williams's field (every node enriched) about a single
+// straight front on the slab, each within its bound.
+void check_both_fields(const char* name, const support::StraightFront& front) {
+  const double patch = patch_test_error(slab(), {support::half_plane_behind(front)}, front.a, front.c);
+  const double williams = williams_error(front);
+  MESSAGE(name << ": patch test " << patch << ", Williams " << williams);
+  CHECK(patch < patch_tolerance);
+  CHECK(williams < williams_tolerance);
+}
+
 } // namespace
 
 TEST_CASE("a front along mesh edges: its tets are those around the edges, Williams's field and the patch test are reproduced") {
@@ -167,11 +177,7 @@ TEST_CASE("a front along mesh edges: its tets are those around the edges, Willia
   const kerf::BranchEnrichment topological = kerf::make_branch_enrichment(mesh, pieces, fronts, kerf::TipEnrichmentRule::topological);
   CHECK(std::set<int>(topological.branch_node.begin(), topological.branch_node.end()) == around_edges);
 
-  const double patch = patch_test_error(mesh, {support::half_plane_behind(front)}, front.a, front.c);
-  const double williams = williams_error(front);
-  MESSAGE("front along edges: patch test " << patch << ", Williams " << williams);
-  CHECK(patch < patch_tolerance);
-  CHECK(williams < williams_tolerance);
+  check_both_fields("front along edges", front);
 }
 
 TEST_CASE("a front exactly through a node: its length and tets are right, F = 0 at the node, and the fields are reproduced") {
@@ -199,20 +205,12 @@ TEST_CASE("a front exactly through a node: its length and tets are right, F = 0 
   // vanishes to 1e-8, and is finite.
   CHECK(topological.node_values[static_cast<std::size_t>(slot)].norm() < 1e-7);
 
-  const double patch = patch_test_error(mesh, {support::half_plane_behind(front)}, front.a, front.c);
-  const double williams = williams_error(front);
-  MESSAGE("front through a node: patch test " << patch << ", Williams " << williams);
-  CHECK(patch < patch_tolerance);
-  CHECK(williams < williams_tolerance);
+  check_both_fields("front through a node", front);
 }
 
 TEST_CASE("the regular front through the middle of elements: the reference for the bounds below") {
   const support::StraightFront front({0.0, 0.0, 0.0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
-  const double patch = patch_test_error(slab(), {support::half_plane_behind(front)}, front.a, front.c);
-  const double williams = williams_error(front);
-  MESSAGE("regular front: patch test " << patch << ", Williams " << williams);
-  CHECK(patch < patch_tolerance);
-  CHECK(williams < williams_tolerance);
+  check_both_fields("regular front", front);
 }
 
 TEST_CASE("a front lying in mesh faces: the tets on both sides hold it, and the fields are reproduced") {
@@ -242,11 +240,7 @@ TEST_CASE("a front lying in mesh faces: the tets on both sides hold it, and the 
   const kerf::BranchEnrichment topological = kerf::make_branch_enrichment(mesh, pieces, fronts, kerf::TipEnrichmentRule::topological);
   CHECK(std::set<int>(topological.branch_node.begin(), topological.branch_node.end()) == beside_faces);
 
-  const double patch = patch_test_error(mesh, {support::half_plane_behind(front)}, front.a, front.c);
-  const double williams = williams_error(front);
-  MESSAGE("front in faces: patch test " << patch << ", Williams " << williams);
-  CHECK(patch < patch_tolerance);
-  CHECK(williams < williams_tolerance);
+  check_both_fields("front in faces", front);
 }
 
 TEST_CASE("a cut whose boundary leaves the mesh: only the inside part is front, an L of length 0.45 ending on the skin") {
