@@ -125,6 +125,17 @@ double summed_front_in_tets(const kerf::TetMesh& mesh, const kerf::CrackFronts& 
   return sum;
 }
 
+// The number of tets that hold pieces of two different fronts.
+int tets_holding_two_fronts(const kerf::TetMesh& mesh, const kerf::CrackFronts& fronts) {
+  int shared = 0;
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    std::set<int> lines;
+    for (const kerf::FrontPiece& p : kerf::front_in_tet(fronts, kerf::tet_corners(mesh, t))) lines.insert(p.polyline);
+    shared += lines.size() == 2;
+  }
+  return shared;
+}
+
 // Tolerances. With the cheap rules the regular front (the first test case) leaves 7.4e-5 of the
 // Williams field and 5.7e-5 of the patch field: quadrature error of the branch test functions'
 // rows (the space holds both fields exactly). The degenerate fronts measured 5e-5 to 5e-4 (the
@@ -273,12 +284,7 @@ TEST_CASE("two fronts in one tet: a narrow slit whose two ends share tets, solva
   const kerf::CrackFronts fronts = kerf::find_crack_fronts(mesh, kerf::CutSurfaces({slit}));
   REQUIRE(fronts.polylines.size() == 2);
   CHECK(fronts.length() == doctest::Approx(0.4).epsilon(1e-12));
-  int shared = 0;
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    std::set<int> lines;
-    for (const kerf::FrontPiece& p : kerf::front_in_tet(fronts, kerf::tet_corners(mesh, t))) lines.insert(p.polyline);
-    shared += lines.size() == 2;
-  }
+  const int shared = tets_holding_two_fronts(mesh, fronts);
   MESSAGE("slit: " << shared << " tets hold both fronts");
   CHECK(shared > 0);
 
@@ -296,12 +302,7 @@ TEST_CASE("two fronts in one tet: two cuts whose fronts pass the same tets: solv
   const kerf::CrackFronts fronts = kerf::find_crack_fronts(mesh, kerf::CutSurfaces({cut_a, cut_b}));
   REQUIRE(fronts.polylines.size() == 2);
   CHECK(fronts.length() == doctest::Approx(0.4).epsilon(1e-12));
-  int shared = 0;
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    std::set<int> lines;
-    for (const kerf::FrontPiece& p : kerf::front_in_tet(fronts, kerf::tet_corners(mesh, t))) lines.insert(p.polyline);
-    shared += lines.size() == 2;
-  }
+  const int shared = tets_holding_two_fronts(mesh, fronts);
   MESSAGE("two cuts: " << shared << " tets hold both fronts");
   CHECK(shared > 0);
 
