@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace kerf {
@@ -78,13 +79,27 @@ BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& p
   std::vector<char> corner(static_cast<std::size_t>(V), 0);
   for (Eigen::Index t = 0; t < T; ++t)
     for (int a = 0; a < 4; ++a) corner[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
-  // The tets the front passes through: only tets a cut triangle meets can hold it.
+  // The tets the front passes through. Every tet is asked, not only those a cut triangle meets
+  // (pieces.entry_tet): a cut lying in a plane of mesh faces meets the tets on one side of it
+  // only (chapter 4 gives the face to one side), while a front lying in such a face belongs to
+  // the tets on both sides (the header's rule; the tets below were missed before, issue 10
+  // item 6, tests/chapter_05/test_front_degenerate.cpp).
+  // A box around the fronts rejects the far tets before the exact clipping.
+  Eigen::Vector3d front_low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), front_high = -front_low;
+  for (const FrontPolyline& line : fronts.polylines)
+    for (const Eigen::Vector3d& x : line.points) front_low = front_low.cwiseMin(x), front_high = front_high.cwiseMax(x);
   if (!fronts.empty())
-    for (const int t : pieces.entry_tet)
-      if (!front_in_tet(fronts, tet_corners(mesh, t)).empty()) {
+    for (Eigen::Index t = 0; t < T; ++t) {
+      const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
+      const double slack = 1e-9 * (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+      if ((X.colwise().minCoeff().transpose().array() > front_high.array() + slack).any() ||
+          (X.colwise().maxCoeff().transpose().array() < front_low.array() - slack).any())
+        continue;
+      if (!front_in_tet(fronts, X).empty()) {
         result.front_tet[static_cast<std::size_t>(t)] = 1;
         for (int a = 0; a < 4; ++a) branch[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
       }
+    }
   if (rule == TipEnrichmentRule::geometric && !fronts.empty())
     for (Eigen::Index i = 0; i < V; ++i)
       if (corner[static_cast<std::size_t>(i)] && fronts.distance(mesh.nodes.row(i).transpose()) <= radius)

@@ -141,7 +141,11 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       const int front_points = tip->front_points > 0 ? tip->front_points : (n == 4 ? 4 : 6);
       if (e < 0) {
         const TetPieces whole = split_tet_by_triangles(X, {});
-        const PieceQuadratureRule r = near_front_graded_rule(whole, 0, tip->fronts, tip->blending_degree, tip->blending_depth);
+        // A front tet no cut triangle meets: the front lies in a face of it whose cut chapter 4
+        // gave to the tet on the other side (issue 10 item 6); it is collapsed all the same.
+        const PieceQuadratureRule r = front_tet && tip->front_rule == FrontRule::collapsed
+                                          ? front_collapsed_rule(X, whole, 0, tip->fronts, front_points)
+                                          : near_front_graded_rule(whole, 0, tip->fronts, tip->blending_degree, tip->blending_depth);
         data.push_back(new_piece(0, rule_points(r.points, r.weights, 1.0, false)));
       } else {
         const TetPieces& tet_pieces = pieces.tets[static_cast<std::size_t>(e)];
