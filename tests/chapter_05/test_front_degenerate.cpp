@@ -90,7 +90,7 @@ Field traction_free_linear_field(const Eigen::Vector3d& a, const Eigen::Vector3d
 
 // The patch test with the topological rule (sign nodes and branch nodes side by side).
 double patch_test_error(const kerf::TetMesh& mesh, std::vector<kerf::TriangleSurface> cuts, const Eigen::Vector3d& a, const Eigen::Vector3d& c) {
-  const support::TipBody body(mesh, std::move(cuts), material, kerf::TipEnrichmentRule::topological, 0.0, front_points, blending_degree,
+  const support::TipBody body(mesh, std::move(cuts), material, kerf::TipEnrichmentRule::topological, 0.0, kerf::FrontRule::collapsed, front_points, blending_degree,
                               blending_depth);
   REQUIRE(body.branch.num_branch_nodes() > 0);
   const Field exact = traction_free_linear_field(a, c);
@@ -102,7 +102,7 @@ double patch_test_error(const kerf::TetMesh& mesh, std::vector<kerf::TriangleSur
 // Williams's mixed-mode field about `front` with every node branch enriched.
 double williams_error(const support::StraightFront& front) {
   // A radius beyond the slab's diagonal: every node is branch enriched.
-  const support::TipBody body(slab(), {support::half_plane_behind(front)}, material, kerf::TipEnrichmentRule::geometric, 2.0, front_points,
+  const support::TipBody body(slab(), {support::half_plane_behind(front)}, material, kerf::TipEnrichmentRule::geometric, 2.0, kerf::FrontRule::collapsed, front_points,
                               blending_degree, blending_depth);
   REQUIRE(body.branch.num_branch_nodes() == body.mesh.num_nodes());
   // The model's frame is the test's (a ahead, b the normal): a test of the degenerate front's frame.
@@ -307,7 +307,7 @@ TEST_CASE("two fronts in one tet: two cuts whose fronts pass the same tets: solv
   CHECK(shared > 0);
 
   // A rigid motion has no strain anywhere, whatever the enrichment: the solve returns it to round-off.
-  const support::TipBody body(mesh, {cut_a, cut_b}, material, kerf::TipEnrichmentRule::topological, 0.0, front_points, blending_degree,
+  const support::TipBody body(mesh, {cut_a, cut_b}, material, kerf::TipEnrichmentRule::topological, 0.0, kerf::FrontRule::collapsed, front_points, blending_degree,
                               blending_depth);
   const Field rigid = [](const Eigen::Vector3d& x) { return Eigen::Vector3d(Eigen::Vector3d(1e-3, -2e-3, 0.5e-3) + Eigen::Vector3d(0.01, 0.02, -0.03).cross(x)); };
   const Eigen::VectorXd u = solve_with_boundary(body, rigid, nullptr);

@@ -29,7 +29,7 @@ kerf::StiffnessConditioning measure(const kerf::TetMesh& mesh, const support::St
                                     double radius) {
   // Cheap rules (3 points per direction, degree 4, graded once): the quadrature's last digits
   // do not move kappa's exponents.
-  const support::TipBody body(mesh, {support::half_plane_behind(front)}, material, rule, radius, 3, 4, 1);
+  const support::TipBody body(mesh, {support::half_plane_behind(front)}, material, rule, radius, kerf::FrontRule::collapsed, 3, 4, 1);
   kerf::DirichletNodes bottom;
   for (Eigen::Index v = 0; v < mesh.num_nodes(); ++v)
     if (std::abs(mesh.nodes(v, 2)) < 1e-12) bottom.nodes.push_back(static_cast<int>(v));

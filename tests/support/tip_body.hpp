@@ -1,10 +1,7 @@
-// A body cut by cuts that end inside it, with chapter 5's branch functions, everything its
-// XFEM model keeps by reference kept alive (the mesh, the pieces, the fronts, the enrichment),
-// and the fields a crack-tip test checks it against: Williams's near-front field of a straight
-// front with its branch coefficients, and linear fields whose stress leaves a cut traction-free.
-// (Williams's field is written here from the textbook rather than taken from
-// fracture/williams_field.hpp, whose kerf::FrontPolar clashes with crack_front.hpp's on this
-// commit: the two headers cannot be included together.)
+// The fields a crack-tip test checks a support::TipBody (cut_body.hpp) against: Williams's
+// near-front field of a straight front with its branch coefficients, and linear fields whose
+// stress leaves a cut traction-free. (Williams's field is written here from the textbook, as an
+// independent check of fracture/williams_field.hpp's.)
 #pragma once
 
 #include "kerf/cut/crack_front.hpp"
@@ -24,22 +21,6 @@
 #include <vector>
 
 namespace support {
-
-struct TipBody {
-  kerf::TetMesh mesh;
-  kerf::CutSurfaces cuts;
-  kerf::MeshPieces pieces;
-  kerf::CrackFronts fronts;
-  kerf::BranchEnrichment branch;
-  kerf::CrackTipFunctions functions;
-  kerf::CutXfemModel model;
-  TipBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::LinearMaterial& material,
-          kerf::TipEnrichmentRule rule, double radius, int front_points = 0, int blending_degree = 6, int blending_depth = 3)
-      : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
-        fronts(kerf::find_crack_fronts(mesh, cuts)), branch(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, radius)),
-        functions{branch, fronts, kerf::FrontRule::collapsed, front_points, blending_degree, blending_depth},
-        model(mesh, material, pieces, branch.sign, subtets, &functions) {}
-};
 
 // A straight front: a point of it and its frame, a ahead, b the cut's normal, c = a x b along it.
 struct StraightFront {
