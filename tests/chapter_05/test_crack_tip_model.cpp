@@ -14,9 +14,11 @@
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include "support/cut_body.hpp"
+#include "support/tip_body.hpp"
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -45,19 +47,12 @@ bool on_box_boundary(const Eigen::Vector3d& x, const Eigen::Vector3d& min, const
   return false;
 }
 
-// The plane-strain near-front fields in the crack's own axes (x ahead, y normal, front along z),
-// written from the textbook formulas (Anderson, Fracture Mechanics, table 2.2), not from the
-// branch functions: u = K / (2 mu) sqrt(r / 2 pi) (f_x(theta), f_y(theta), 0).
+// The crack's own axes: a = x ahead, b = y the normal, the front along z through the origin.
+// Williams's field about it is support::williams (tip_body.hpp), from the textbook formulas, not
+// from the branch functions.
+const support::StraightFront slab_front({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0});
 Eigen::Vector3d williams(const Eigen::Vector3d& x, double K_I, double K_II, const kerf::LinearMaterial& material) {
-  const double mu = material.mu();
-  const double kappa = 3.0 - 4.0 * material.poisson;
-  const double r = std::hypot(x[0], x[1]);
-  const double theta = std::atan2(x[1], x[0]);
-  const double s = std::sin(theta / 2.0), c = std::cos(theta / 2.0);
-  const double scale = std::sqrt(r / (2.0 * M_PI)) / (2.0 * mu);
-  const double ux = K_I * c * (kappa - 1.0 + 2.0 * s * s) + K_II * s * (kappa + 1.0 + 2.0 * c * c);
-  const double uy = K_I * s * (kappa + 1.0 - 2.0 * c * c) - K_II * c * (kappa - 1.0 - 2.0 * s * s);
-  return scale * Eigen::Vector3d(ux, uy, 0.0);
+  return support::williams(slab_front, K_I, K_II, material, x);
 }
 
 // The largest difference between the discrete field and `exact` at the nodes (standard DOFs,
@@ -104,16 +99,10 @@ TEST_CASE("a slab whose nodes all carry the branch functions reproduces the Will
       REQUIRE(body.branch.num_branch_nodes() == (order == 1 ? body.mesh.num_nodes() : 4 * 4 * 3));
       const auto exact = [&](const Eigen::Vector3d& x) { return williams(x, mode.K_I, mode.K_II, material); };
 
-      // The field in the branch functions (notes 5.7, with the frame a = x, b = y that the
-      // rectangle's normal gives): u = sum_l F_l c_l with, for A = K / (2 mu sqrt(2 pi)),
-      // mode I:  c_1 = A_I (kappa + 1) y, c_2 = A_I (kappa - 1) x, c_3 = A_I x, c_4 = -A_I y;
-      // mode II: c_1 = A_II (kappa + 1) x, c_2 = -A_II (kappa - 1) y, c_3 = A_II y, c_4 = A_II x.
-      const double kappa = 3.0 - 4.0 * material.poisson;
-      const double A_I = mode.K_I / (2.0 * material.mu() * std::sqrt(2.0 * M_PI));
-      const double A_II = mode.K_II / (2.0 * material.mu() * std::sqrt(2.0 * M_PI));
+      // The field in the branch functions, u = sum_l F_l c_l (notes 5.7, with the frame a = x,
+      // b = y that the rectangle's normal gives).
+      const std::array<Eigen::Vector3d, 4> c = support::williams_branch_coefficients(slab_front, mode.K_I, mode.K_II, material);
       const Eigen::Vector3d ex = Eigen::Vector3d::UnitX(), ey = Eigen::Vector3d::UnitY();
-      const Eigen::Vector3d c[4] = {A_I * (kappa + 1.0) * ey + A_II * (kappa + 1.0) * ex, A_I * (kappa - 1.0) * ex - A_II * (kappa - 1.0) * ey,
-                                    A_I * ex + A_II * ey, -A_I * ey + A_II * ex};
       // The frame the model measures from is that one (a test of the front's orientation).
       const kerf::FrontPolar polar = body.fronts.polar({-0.2, 0.05, 0.1});
       CHECK((polar.a - ex).norm() < 1e-12);

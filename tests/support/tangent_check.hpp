@@ -35,4 +35,17 @@ inline Eigen::MatrixXd central_difference_tangent(const kerf::QuasiStaticModel& 
   return K;
 }
 
+// How far the consistent and the warped tangents at u are from the central-difference derivative
+// of the forces (step h), each relative to the latter's Frobenius norm.
+struct TangentErrors {
+  double consistent = 0.0, warped = 0.0;
+};
+inline TangentErrors tangent_errors(const kerf::QuasiStaticModel& model, const Eigen::VectorXd& u, double h) {
+  Eigen::VectorXd f;
+  const Eigen::MatrixXd K = assembled_tangent(model, u, kerf::CorotationalTangent::consistent, f);
+  const Eigen::MatrixXd K_warped = assembled_tangent(model, u, kerf::CorotationalTangent::warped, f);
+  const Eigen::MatrixXd K_fd = central_difference_tangent(model, u, h);
+  return {(K - K_fd).norm() / K_fd.norm(), (K_warped - K_fd).norm() / K_fd.norm()};
+}
+
 } // namespace support

@@ -7,30 +7,38 @@
 
 namespace kerf {
 
+Eigen::Matrix3d piece_mean_deformation_gradient(const Eigen::MatrixX3d& mean_gradient, int num_node_slots, const Eigen::MatrixX3d& X,
+                                                const Eigen::MatrixX3d& q) {
+  Eigen::MatrixX3d x = q;
+  x.topRows(num_node_slots) += X.topRows(num_node_slots);
+  return x.transpose() * mean_gradient;
+}
+
+Eigen::VectorXd corotated_piece_displacement(const Eigen::Matrix3d& R, int num_node_slots, const Eigen::MatrixX3d& X,
+                                             const Eigen::MatrixX3d& q) {
+  const Eigen::Index S = q.rows();
+  Eigen::VectorXd d(3 * S);
+  for (Eigen::Index s = 0; s < S; ++s) {
+    if (s < num_node_slots) {
+      const Eigen::Vector3d X_s0 = (X.row(s) - X.row(0)).transpose();
+      d.segment<3>(3 * s) = R.transpose() * (X_s0 + (q.row(s) - q.row(0)).transpose()) - X_s0;
+    } else {
+      d.segment<3>(3 * s) = R.transpose() * q.row(s).transpose();
+    }
+  }
+  return d;
+}
+
 PolarDecomposition add_corotated_piece(const Eigen::MatrixXd& K, const Eigen::MatrixX3d& mean_gradient, int num_node_slots,
                                        const Eigen::MatrixX3d& X, const Eigen::MatrixX3d& q, double volume,
                                        RotationMethod method, CorotationalTangent tangent, Eigen::VectorXd& f,
                                        Eigen::MatrixXd* Kt, CorotationStatistics* statistics) {
   const Eigen::Index S = q.rows();
-  // x_s: positions on node slots, coefficients on enriched ones; F_bar = sum_s x_s g_bar_s^T.
-  Eigen::MatrixX3d x = q;
-  x.topRows(num_node_slots) += X.topRows(num_node_slots);
-  const Eigen::Matrix3d F = x.transpose() * mean_gradient;
+  const Eigen::Matrix3d F = piece_mean_deformation_gradient(mean_gradient, num_node_slots, X, q);
   const PolarDecomposition polar = element_rotation(F, method);
   if (statistics) statistics->record(polar, F, volume);
   const Eigen::Matrix3d& R = polar.R;
-
-  // d relative to node 0 for the node slots (corotated_element.hpp: no round-off of absolute
-  // coordinates); K annihilates that translation.
-  Eigen::VectorXd d(3 * S);
-  for (Eigen::Index s = 0; s < S; ++s) {
-    if (s < num_node_slots) {
-      const Eigen::Vector3d X_s0 = (X.row(s) - X.row(0)).transpose();
-      d.segment<3>(3 * s) = R.transpose() * (x.row(s) - x.row(0)).transpose() - X_s0;
-    } else {
-      d.segment<3>(3 * s) = R.transpose() * x.row(s).transpose();
-    }
-  }
+  const Eigen::VectorXd d = corotated_piece_displacement(R, num_node_slots, X, q);
   const Eigen::VectorXd Kd = K * d;
   for (Eigen::Index s = 0; s < S; ++s) f.segment<3>(3 * s) += R * Kd.segment<3>(3 * s);
   if (!Kt) return polar;
@@ -48,12 +56,10 @@ PolarDecomposition add_corotated_piece(const Eigen::MatrixXd& K, const Eigen::Ma
     return polar;
   }
   const Eigen::Matrix3d M_inverse = M.inverse();
-  // The rotated positions d_u = R^T x_u (node slots relative to node 0, as d).
-  Eigen::MatrixX3d rotated(S, 3);
-  for (Eigen::Index u = 0; u < S; ++u) {
-    const Eigen::Vector3d x_u = u < num_node_slots ? Eigen::Vector3d((x.row(u) - x.row(0)).transpose()) : Eigen::Vector3d(x.row(u).transpose());
-    rotated.row(u) = (R.transpose() * x_u).transpose();
-  }
+  // The rotated positions R^T x_u (node slots relative to node 0, as in d): d_u + (X_u - X_0),
+  // and d_u itself on the enriched slots.
+  Eigen::MatrixX3d rotated = d.reshaped(3, S).transpose();
+  for (Eigen::Index u = 1; u < num_node_slots; ++u) rotated.row(u) += X.row(u) - X.row(0);
   Eigen::VectorXd c(3 * S), column(3 * S);
   for (Eigen::Index s = 0; s < S; ++s)
     for (int e = 0; e < 3; ++e) {

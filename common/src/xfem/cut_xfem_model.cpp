@@ -207,6 +207,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
           A.noalias() += weighted.transpose() * vec_g;
         }
         piece.stiffness = stiffness_from_gradient_products(A, material.mu(), material.lambda());
+        piece.volume = volume;
         if (volume > 0.0) piece.mean_gradient /= volume;
       }
     } else if (list.empty()) {
@@ -451,10 +452,8 @@ void CutXfemModel::assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u,
   const Eigen::VectorXd q_vector = q.transpose().reshaped();
   for (const Piece& piece : integrated_pieces(t)) {
     if (corotated) {
-      double volume = 0.0;
-      for (const Point& point : piece.points) volume += point.weight;
-      if (!(volume > 0.0)) continue; // no volume, no force (and no mean gradient to turn by)
-      add_corotated_piece(piece.stiffness, piece.mean_gradient, mesh_.nodes_per_tet(), X, q, volume, rotation, tangent, f_e,
+      if (!(piece.volume > 0.0)) continue; // no volume, no force (and no mean gradient to turn by)
+      add_corotated_piece(piece.stiffness, piece.mean_gradient, mesh_.nodes_per_tet(), X, q, piece.volume, rotation, tangent, f_e,
                           assembler ? &K_e : nullptr, &stats);
     } else {
       f_e += piece.stiffness * q_vector;
@@ -468,23 +467,12 @@ void CutXfemModel::assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u,
 double CutXfemModel::branch_tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const {
   Eigen::MatrixX3d X, q;
   branch_tet_state(t, u, X, q);
-  const Eigen::Index slots = q.rows();
   const int n = mesh_.nodes_per_tet();
   double energy = 0.0;
   for (const Piece& piece : integrated_pieces(t)) {
-    // d as in corotated_piece.hpp (R = I: d = q up to a translation K annihilates).
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    if (corotated) {
-      Eigen::MatrixX3d x = q;
-      x.topRows(n) += X.topRows(n);
-      R = element_rotation(x.transpose() * piece.mean_gradient, rotation).R;
-    }
-    Eigen::VectorXd d(3 * slots);
-    for (Eigen::Index s = 0; s < slots; ++s) {
-      const Eigen::Vector3d x_s = s < n ? Eigen::Vector3d((X.row(s) - X.row(0) + q.row(s) - q.row(0)).transpose()) : Eigen::Vector3d(q.row(s).transpose());
-      const Eigen::Vector3d X_s = s < n ? Eigen::Vector3d((X.row(s) - X.row(0)).transpose()) : Eigen::Vector3d::Zero();
-      d.segment<3>(3 * s) = R.transpose() * x_s - X_s;
-    }
+    const Eigen::Matrix3d R = corotated ? element_rotation(piece_mean_deformation_gradient(piece.mean_gradient, n, X, q), rotation).R
+                                        : Eigen::Matrix3d::Identity();
+    const Eigen::VectorXd d = corotated_piece_displacement(R, n, X, q);
     energy += 0.5 * d.dot(piece.stiffness * d);
   }
   return energy;

@@ -40,6 +40,17 @@
 
 namespace kerf {
 
+/// F_bar = sum_s x_s g_bar_s^T with x_s = X_s + q_s on the first num_node_slots slots and q_s on
+/// the others (the arguments as for add_corotated_piece).
+Eigen::Matrix3d piece_mean_deformation_gradient(const Eigen::MatrixX3d& mean_gradient, int num_node_slots, const Eigen::MatrixX3d& X,
+                                                const Eigen::MatrixX3d& q);
+
+/// d (3S): d_s = R^T (x_s - x_0) - (X_s - X_0) on the node slots, measured from node 0 as in
+/// corotated_element.hpp (no round-off of absolute coordinates; K annihilates the translation),
+/// and d_s = R^T q_s on the enriched ones. With R = I it is q up to that translation.
+Eigen::VectorXd corotated_piece_displacement(const Eigen::Matrix3d& R, int num_node_slots, const Eigen::MatrixX3d& X,
+                                             const Eigen::MatrixX3d& q);
+
 /// Adds a piece's corotated force and tangent.
 /// @param K            the piece's linear stiffness on its S slots (3S x 3S)
 /// @param mean_gradient S x 3: row s is g_bar_s, slot s's gradient averaged over the piece

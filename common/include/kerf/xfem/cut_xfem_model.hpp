@@ -203,6 +203,7 @@ private:
     Eigen::MatrixXd stiffness;
     Eigen::MatrixX3d mean_gradient;
     int side = 0; // +1 / -1 if the piece lies above / below the cut, for theta's sign (0: not known)
+    double volume = 0.0; // in a tet with branch nodes: the sum of the weights (m^3), computed once
   };
   // At point q of a piece of branch tet t: one gradient per slot (rows), the phantom element's
   // G_a on node a's slot and on the slot of the sign enrichment active there, and each branch
