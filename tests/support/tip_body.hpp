@@ -31,12 +31,19 @@ struct StraightFront {
 
 // Williams's plane-strain modes I and II about `front` (Anderson, Fracture Mechanics, table
 // 2.2): u = K / (2 mu) sqrt(r / 2 pi) (f_a(theta) a + f_b(theta) b), theta = +pi on the cut.
+// `cut_side` (+1 or -1) is for a point the model puts ON the cut (a node with
+// BranchEnrichment::cut_side != 0): theta = cut_side pi whatever the sign of x_b's round-off, as
+// CrackFronts::polar takes it. The field is two-valued there, and a node's standard DOF holds
+// the value of the model's side: a node of a box mesh is rarely exactly on a cut given by round
+// numbers (the slab's node row y = -0.3 + 2/3 0.6 = 0.09999999999999998 lies 2.8e-17 below the
+// cut y = 0.1, which chapter 4's snap and the model count as on it), and atan2 of that
+// round-off gives the other face's value, off by the crack opening.
 inline Eigen::Vector3d williams(const StraightFront& front, double K_I, double K_II, const kerf::LinearMaterial& material,
-                                const Eigen::Vector3d& x) {
+                                const Eigen::Vector3d& x, int cut_side = 0) {
   const Eigen::Vector3d y = x - front.origin;
   const double x_a = y.dot(front.a), x_b = y.dot(front.b);
   const double r = std::hypot(x_a, x_b);
-  const double theta = x_b == 0.0 && x_a < 0.0 ? M_PI : std::atan2(x_b, x_a);
+  const double theta = cut_side != 0 ? cut_side * M_PI : (x_b == 0.0 && x_a < 0.0 ? M_PI : std::atan2(x_b, x_a));
   const double kappa = 3.0 - 4.0 * material.poisson;
   const double s = std::sin(theta / 2.0), c = std::cos(theta / 2.0);
   const double scale = std::sqrt(r / (2.0 * M_PI)) / (2.0 * material.mu());

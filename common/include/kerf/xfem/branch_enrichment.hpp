@@ -62,8 +62,13 @@ struct BranchEnrichment {
   /// N_B: F_l(x_i) at each branch node, for the shift N_i (F_l(x) - F_l(x_i)): with theta = +pi
   /// for a node lying on the cut, the side chapter 4 gives such a node (above).
   std::vector<Eigen::Vector4d> node_values;
-  /// #V: +1 for a node lying on a cut (within 1e-10 of the tet size), so that theta = +pi there
-  /// (CrackFronts::polar's cut_side), 0 for the others. Only branch nodes are looked at.
+  /// #V: +1 for a node lying on a cut, so that theta = +pi there (CrackFronts::polar's cut_side),
+  /// 0 for the others. Only branch nodes are looked at. "On a cut" is a corner of a cut polygon
+  /// of a piece of one of its tets: a cut through the node, or a cut plane that holds a face of
+  /// a tet around it within chapter 4's snap (1e-12 of the tet's size: a box mesh's nodes
+  /// y = 0.09999999999999998 are on the cut y = 0.1). Such a node's standard DOF holds
+  /// the face above: a field discontinuous across the cut, prescribed there, must take that
+  /// face's value, not the one atan2 gives the round-off in x_b (figures/05_crack_tip/failures.md).
   std::vector<int> cut_side;
   std::vector<char> front_tet;          ///< #T: a piece of the front lies in it (front_in_tet)
   std::vector<char> has_branch_nodes;   ///< #T: some corner of it is branch enriched
