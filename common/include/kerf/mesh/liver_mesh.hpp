@@ -15,8 +15,8 @@ namespace kerf {
 /// The fewest tets make_liver_mesh accepts. Below it the shape is not resolved: the left lobe (7 cm
 /// thick) is two or three tets across, at 300 the count overshoots by 25 % and the volume is 6 % short.
 inline constexpr int liver_min_tets = 1000;
-/// The most tets make_liver_mesh accepts: 100k take Mesh_3 about 9 s here, so a million some minutes;
-/// beyond that a size typed one digit too long would look like a hang.
+/// The most tets make_liver_mesh accepts: a million took 40 s and 0.4 GB here (100k: 2 s); beyond
+/// it a size typed one digit too long would look like a hang.
 inline constexpr int liver_max_tets = 1'000'000;
 
 /// The edge length (m) of the regular tet whose volume is the liver's volume over target_tets.
@@ -26,8 +26,9 @@ double liver_regular_edge(int target_tets);
 /// @throws std::invalid_argument outside [liver_min_tets, liver_max_tets]
 ImplicitMeshSizing liver_mesh_sizing(int target_tets);
 
-/// A Tet4 mesh of the liver (liver_phi < 0) with about target_tets tets (within 30 % for 2k to
-/// 100k, measured in figures/07_liver/liver_mesh.md), perturbed and exuded, the same every call.
+/// A Tet4 mesh of the liver (liver_phi < 0) with about target_tets tets, perturbed and exuded, the
+/// same every call. Promised within 30 % of the target for 2k to 100k; measured within 2 %, and
+/// within 1 % at 1000 and at a million (figures/07_liver/liver_mesh.md).
 /// @throws std::invalid_argument `make_liver_mesh: N tets is outside the range [1000, 1000000]`
 ///         for a target out of range; std::runtime_error when Mesh_3 fails (mesh_implicit_domain)
 TetMesh make_liver_mesh(int target_tets, const ImplicitMeshOptimisation& optimisation = {});
