@@ -6,7 +6,7 @@
 
    Sample runs:
      07_liver_mesh_study --quick --out output/liver_mesh_study_quick
-     07_liver_mesh_study --out figures/07_liver
+     07_liver_mesh_study --out figures/07_liver --only targets,optimisers
 
    Description: the liver is the smooth union of two ellipsoid lobes cut smoothly by a floor
    plane (mesh/liver_shape.hpp), about 0.20 x 0.15 x 0.10 m; make_liver_mesh (mesh/liver_mesh.hpp)
@@ -17,12 +17,16 @@
                  dihedral angle, the smallest and mean radius ratio, and the volume's error
                  against a midpoint count of phi < 0 on 0.5 mm cubes (0.02 % accurate);
      optimisers  liver_optimisers.csv: 10k target tets with none, perturb, exude, both, then ODT or
-                 Lloyd (10 iterations) before both, and sliver bounds 12, 15, 18, 20 degrees.
+                 Lloyd (10 iterations) before both, and sliver bounds 12, 15, 18, 20 degrees;
+     picture     liver_mesh.vtu: the 10k mesh (2k with --quick) with each tet's smallest
+                 dihedral angle and radius ratio as cell arrays and a zero 'displacement', for
+                 ParaView or render_pieces (figures/07_liver/render_liver.sh draws it).
    Times are of one run each on a machine that may be shared: they say how the cost grows, not
    what it is to the millisecond. --quick runs 2k targets and two optimiser rows; it is a test.
 
    Read chapter 7 first. */
 
+#include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/liver_mesh.hpp"
 #include "kerf/mesh/liver_shape.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
@@ -81,8 +85,8 @@ void write_row(std::ostream& csv, const Row& r) {
 } // namespace liver_mesh_study
 
 int main(int argc, char** argv) {
-  const auto options = kerf_measure::parse_run_options(argc, argv, "07_liver_mesh_study [--quick] [--out DIR] [--only targets,optimisers]",
-                                                       "output/liver_mesh_study", {"targets", "optimisers"});
+  const auto options = kerf_measure::parse_run_options(argc, argv, "07_liver_mesh_study [--quick] [--out DIR] [--only targets,optimisers,picture]",
+                                                       "output/liver_mesh_study", {"targets", "optimisers", "picture"});
   if (!options) return 2;
   try {
     namespace ls = liver_mesh_study;
@@ -127,6 +131,19 @@ int main(int argc, char** argv) {
                                          {"both bound 20", variant(0, 0, true, true, 20)}});
       }
       for (const auto& [label, o] : variants) ls::write_row(csv, ls::measure(label, target, o, reference_volume));
+    }
+
+    if (options->runs("picture")) {
+      const kerf::TetMesh mesh = kerf::make_liver_mesh(options->quick ? 2000 : 10000);
+      Eigen::MatrixXd angle(mesh.num_tets(), 1), ratio(mesh.num_tets(), 1);
+      for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+        angle(t, 0) = kerf::tet_min_dihedral_angle(kerf::tet_corners(mesh, t));
+        ratio(t, 0) = kerf::tet_radius_ratio(kerf::tet_corners(mesh, t));
+      }
+      const std::filesystem::path file = options->out / "liver_mesh.vtu";
+      kerf::write_vtu(file, mesh, {{"displacement", Eigen::MatrixXd::Zero(mesh.num_nodes(), 3)}},
+                      {{"min_dihedral_angle", angle}, {"radius_ratio", ratio}});
+      std::cout << "wrote " << file.string() << " (" << mesh.num_tets() << " tets)\n";
     }
   } catch (const std::exception& error) {
     std::cerr << "07_liver_mesh_study: " << error.what() << '\n';
