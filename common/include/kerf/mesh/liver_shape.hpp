@@ -64,8 +64,9 @@ Eigen::Vector3d liver_centre();
 double liver_bounding_radius();
 
 /// The liver's volume (m^3) by counting the midpoints with phi < 0 of a grid of cubes of side
-/// `cell` over liver_bounding_box(). With the default 2 mm cells (about 1.3 million evaluations,
-/// some 50 ms) it is within 0.5 % of the exact volume; the mesher only needs it to choose a size.
+/// `cell` over liver_bounding_box(). With the default 2 mm cells (half a million evaluations) it
+/// is within 0.5 % of the exact volume (0.09 % measured against 1 mm cells); the mesher only needs
+/// it to choose a size.
 double liver_volume(double cell = 0.002);
 
 } // namespace kerf
