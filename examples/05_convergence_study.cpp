@@ -22,6 +22,8 @@
                interaction integral of the solution and of the interpolant, unknowns, and the
                seconds to build, assemble and solve (on a shared machine: indicative only);
      fine      the ladder's n = 65 (not with --quick);
+     corrected the ladder n = 5 to 65 with Fries's blending correction (branch_enrichment.hpp),
+               topological and geometric with r_e = 0.1 m;
      tet10     the same on Tet10 for n = 5, 9 (the collapsed front rule has 6^3 points per
                sub-tet: small meshes only);
      radius    r_e = 0 (topological), h, 2 h, 4 h, 0.05, 0.1, 0.2 m and the library's default
@@ -106,7 +108,7 @@ void write_csv(const std::vector<Row>& rows, const std::filesystem::path& out) {
   for (const Row& r : rows) {
     const ws::Setup& s = r.setup;
     const bool geometric = s.enrichment == ws::TipEnrichment::geometric;
-    const bool has_K = r.part == "sif" || r.part == "ladder" || r.part == "sif_radius";
+    const bool has_K = r.part == "sif" || r.part == "ladder" || r.part == "sif_radius" || r.part == "corrected";
     csv << r.part << ',' << ws::name(s.enrichment) << ',' << s.order << ','
         << (s.boundary == ws::BoundaryEnrichments::interpolated ? "interpolated" : "gripped") << ',' << s.cells << ',' << r.h << ','
         << (r.radius_rule.empty() ? "NaN" : r.radius_rule) << ',' << (geometric ? s.radius : NAN) << ',' << s.K.K_I << ',' << s.K.K_II
@@ -123,7 +125,7 @@ void write_csv(const std::vector<Row>& rows, const std::filesystem::path& out) {
 
 int main(int argc, char** argv) {
   const auto options = kerf_measure::parse_run_options(argc, argv, "05_convergence_study [--quick] [--out DIR] [--only PARTS]",
-                                                       "output/convergence_study", {"rules", "small", "ladder", "fine", "tet10", "radius", "sif", "sif_radius", "gripped"});
+                                                       "output/convergence_study", {"rules", "small", "ladder", "fine", "corrected", "tet10", "radius", "sif", "sif_radius", "gripped"});
   if (!options) return 2;
   try {
     namespace cs = convergence_study;
@@ -168,6 +170,15 @@ int main(int argc, char** argv) {
     if (options->runs("fine") && !options->quick)
       for (const ws::TipEnrichment e : {ws::TipEnrichment::none, ws::TipEnrichment::topological, ws::TipEnrichment::geometric})
         rows.push_back(cs::run("ladder", setup(65, 1, e, fixed_radius), e == ws::TipEnrichment::geometric ? "0.1m" : "", true));
+    // Fries's corrected XFEM (branch_enrichment.hpp) on the same ladder: does the ramp over the
+    // blending tets restore h^2?
+    if (options->runs("corrected"))
+      for (const ws::TipEnrichment e : {ws::TipEnrichment::topological, ws::TipEnrichment::geometric})
+        for (const int n : options->quick ? std::vector<int>{5} : std::vector<int>{5, 9, 17, 33, 65}) {
+          ws::Setup s = setup(n, 1, e, fixed_radius);
+          s.blending = kerf::BlendingCorrection::corrected;
+          rows.push_back(cs::run("corrected", s, e == ws::TipEnrichment::geometric ? "0.1m" : "", true));
+        }
     if (options->runs("tet10"))
       for (const ws::TipEnrichment e : {ws::TipEnrichment::none, ws::TipEnrichment::topological, ws::TipEnrichment::geometric})
         for (const int n : options->quick ? std::vector<int>{5} : std::vector<int>{5, 9}) rows.push_back(cs::run("tet10", setup(n, 2, e, fixed_radius), e == ws::TipEnrichment::geometric ? "0.1m" : "", false));

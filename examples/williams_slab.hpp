@@ -13,9 +13,16 @@
 // The boundary condition is the XFEM interpolant of the exact field, every DOF of every
 // boundary node prescribed:
 //   u_v = u(x_v)                       (the field at the node: every enrichment is shifted),
-//   a_k = -2 F_1(x_v) c_1              (a sign enrichment: the far side's field minus the home
-//                                       side's, surface_enrichment.hpp; across the cut only F_1
-//                                       jumps, F_1(theta -+ 2 pi) = -F_1(theta)),
+//   a_k = -2 u(x_v)                    (a sign enrichment: the far side's field minus the home
+//                                       side's, surface_enrichment.hpp. The far side's field at
+//                                       x_v is its continuation across the crack's face, theta
+//                                       -+ 2 pi, and every F_l changes sign there:
+//                                       sin, cos(theta / 2 -+ pi) = -sin, -cos(theta / 2). On the
+//                                       crack itself only F_1 is non-zero, but a node beside it
+//                                       needs all four: with -2 F_1 c_1 alone, as this file had
+//                                       until issue 10's blending study, a boundary node next to
+//                                       the crack was off by O(h / sqrt(r)) and the interpolant's
+//                                       energy error fell like h^0.5),
 //   b_{v,l} = c_l                      (a branch node's four functions),
 // where u = sum_l F_l c_l is Williams's field in the branch functions (notes 5.7; for
 // A = K / (2 mu sqrt(2 pi)) and the frame a, b:
@@ -76,6 +83,8 @@ struct Setup {
   int blending_degree = 4;
   int blending_depth = 0;
   BoundaryEnrichments boundary = BoundaryEnrichments::interpolated;
+  /// Fries's ramp over the blending tets, or not (branch_enrichment.hpp).
+  kerf::BlendingCorrection blending = kerf::BlendingCorrection::none;
 };
 
 inline double cell_size(const Setup& s) { return (slab_max[0] - slab_min[0]) / s.cells; }
@@ -127,7 +136,7 @@ struct Slab {
     }
     const kerf::TipEnrichmentRule rule =
         s.enrichment == TipEnrichment::topological ? kerf::TipEnrichmentRule::topological : kerf::TipEnrichmentRule::geometric;
-    branch = std::make_unique<kerf::BranchEnrichment>(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, s.radius));
+    branch = std::make_unique<kerf::BranchEnrichment>(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, s.radius, s.blending));
     functions = std::make_unique<kerf::CrackTipFunctions>(kerf::CrackTipFunctions{*branch, fronts, s.front_rule, s.front_points, s.blending_degree, s.blending_depth});
     model = std::make_unique<kerf::CutXfemModel>(mesh, material, pieces, branch->sign, subtets, functions.get());
   }
@@ -165,10 +174,8 @@ struct Slab {
     for (Eigen::Index v = 0; v < N; ++v) {
       const Eigen::Vector3d x = mesh.nodes.row(v).transpose();
       u.segment<3>(3 * v) = exact(x);
-      const kerf::StraightFrontPolar polar = kerf::front_polar(front, x);
-      const double F_1 = std::sqrt(polar.r) * std::sin(0.5 * polar.theta);
       for (int k = sign.first_enrichment[static_cast<std::size_t>(v)]; k < sign.first_enrichment[static_cast<std::size_t>(v) + 1]; ++k)
-        u.segment<3>(3 * (N + k)) = -2.0 * F_1 * c[0];
+        u.segment<3>(3 * (N + k)) = -2.0 * exact(x);
       if (branch)
         if (const int slot = branch->branch_slot[static_cast<std::size_t>(v)]; slot >= 0)
           for (int l = 0; l < 4; ++l) u.segment<3>(3 * (model->branch_dof_node(slot) + l)) = c[static_cast<std::size_t>(l)];
@@ -202,8 +209,8 @@ struct Slab {
 struct Errors {
   double L2 = 0.0, L2_exact = 0.0;         ///< ||u_h - u||, ||u|| (m sqrt(m^3))
   double energy = 0.0, energy_exact = 0.0; ///< sqrt(int eps(e) : C : eps(e)), the same of u
-  double L2_blending = 0.0;                ///< ||u_h - u|| over the tets with some, not all, corners branch enriched
-  double L2_enriched = 0.0;                ///< ... over the tets with all corners branch enriched
+  double L2_blending = 0.0;                ///< ||u_h - u|| over the tets with some, not all, corners in I* (branch_enrichment.hpp)
+  double L2_enriched = 0.0;                ///< ... over the tets with all corners in I*
   double relative_L2() const { return L2 / L2_exact; }
   double relative_energy() const { return energy / energy_exact; }
 };
@@ -231,7 +238,8 @@ inline Errors measure_errors(const Slab& slab, const Eigen::VectorXd& u) {
     const int refinements = front ? 2 : (slab.fronts.distance(X.colwise().mean().transpose()) < 2.0 * h ? 1 : 0);
     int branch_corners = 0;
     if (slab.branch)
-      for (int a = 0; a < 4; ++a) branch_corners += slab.branch->branch_slot[static_cast<std::size_t>(slab.mesh.tets(t, a))] >= 0;
+      for (int a = 0; a < 4; ++a)
+        branch_corners += slab.branch->kind[static_cast<std::size_t>(slab.mesh.tets(t, a))] == kerf::NodeEnrichmentKind::branch;
     for (int p = 0; p < tp.num_pieces(); ++p) {
       const kerf::PieceQuadratureRule rule = kerf::refined_subtet_rule(tp, p, 4, refinements);
       for (std::size_t q = 0; q < rule.points.size(); ++q) {

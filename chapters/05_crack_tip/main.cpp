@@ -146,6 +146,16 @@ void CrackTip::make_mesh() {
 // rule is Paulus's topological one; the default r_e (geometric enrichment) keeps a fixed region
 // around the front enriched as the mesh is refined, which is what restores the optimal rate
 // (Laborde et al. 2005; figures/05_crack_tip/convergence.md measures it).
+//
+// Blending tets, those with some corners branch enriched and some not, spoil that rate: there
+// the branch nodes' hats do not sum to one, so the enrichment is a fraction of F that the
+// standard functions cannot make up. With `"blending": "corrected"` the functions are
+// multiplied by Fries's ramp R, the sum of the branch nodes' hats, and every corner of a
+// blending tet gets them: the *ramp* nodes, which keep their sign enrichments (Fries 2008;
+// branch_enrichment.hpp). It lowers the error on the convergence ladder, but the ramp nodes'
+// functions are nearly dependent far from the front and, on a straight front, exactly so in six
+// directions (branch_null_space.hpp holds one DOF per direction), so the default stays Paulus's
+// plain blending and the corotated model refuses the correction.
 void CrackTip::apply_cut() {
   cuts_ = std::make_unique<kerf::CutSurfaces>(kerf::scene_cut_surfaces(scene_, &std::cerr));
   pieces_ = kerf::scene_mesh_pieces(scene_, mesh_, *cuts_, &std::cerr);
@@ -168,9 +178,11 @@ void CrackTip::apply_cut() {
     line << "enrichment: branch, "
          << (crack_tip_->rule() == kerf::TipEnrichmentRule::topological ? std::string("topological")
                                                                          : "geometric, radius " + std::to_string(crack_tip_->radius()) + " m")
-         << (crack_tip_->default_radius() ? " (default)" : "") << "; " << crack_tip_->num_branch_nodes() << " branch nodes, "
-         << branch->count(kerf::NodeEnrichmentKind::sign) << " sign nodes; " << front_tets << " tets hold the front, " << branch_tets
-         << " have branch functions";
+         << (crack_tip_->default_radius() ? " (default)" : "") << "; " << branch->count(kerf::NodeEnrichmentKind::branch)
+         << " branch nodes, " << branch->count(kerf::NodeEnrichmentKind::sign) << " sign nodes, " << branch->num_ramp_nodes()
+         << " ramp nodes (blending "
+         << (branch->blending_correction == kerf::BlendingCorrection::corrected ? "corrected" : "not corrected") << "); "
+         << front_tets << " tets hold the front, " << branch_tets << " have branch functions";
   } else {
     line << "enrichment: none (chapter 4's); " << crack_tip_->sign_enrichment().enriched_nodes << " enriched nodes, 0 branch nodes";
   }

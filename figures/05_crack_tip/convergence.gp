@@ -1,7 +1,7 @@
 # Chapter 5's convergence study (examples/05_convergence_study.cpp, convergence.csv): Williams's
 # mode-I field on the boundary of the cracked slab. Left: the relative L2 error against the cell
-# size h for no branch functions, topological and geometric (r_e = 0.1 m) enrichment, Tet4
-# (lines) and Tet10 (open points). Middle: the relative energy error. Right: the geometric
+# size h for no branch functions, topological and geometric (r_e = 0.1 m) enrichment, each also
+# with Fries's blending correction, Tet4 (lines) and Tet10 (open points). Middle: the relative energy error. Right: the geometric
 # radius against cost on n = 9 and 17 (relative L2 error against unknowns).
 set terminal pngcairo size 1650,560 enhanced font "DejaVu Sans,11" linewidth 1.5
 set datafile separator ","
@@ -22,6 +22,8 @@ set ylabel "||u_h - u|| / ||u||"
 plot "convergence.csv" using (pick("ladder", "none", 1)):($15/$16) w lp pt 9 lc rgb "#2ca02c" t "none (Heaviside only), Tet4", \
      "" using (pick("ladder", "topological", 1)):($15/$16) w lp pt 5 lc rgb "#1f77b4" t "topological, Tet4", \
      "" using (pick("ladder", "geometric", 1)):($15/$16) w lp pt 7 lc rgb "#d62728" t "geometric r_e = 0.1 m, Tet4", \
+     "" using (pick("corrected", "topological", 1)):($15/$16) w lp pt 13 lc rgb "#17becf" t "topological, Fries-corrected, Tet4", \
+     "" using (pick("corrected", "geometric", 1)):($15/$16) w lp pt 11 lc rgb "#9467bd" t "geometric, Fries-corrected, Tet4", \
      "" using (pick("tet10", "none", 2)):($15/$16) w lp pt 8 dt 2 lc rgb "#2ca02c" t "none, Tet10", \
      "" using (pick("tet10", "topological", 2)):($15/$16) w lp pt 4 dt 2 lc rgb "#1f77b4" t "topological, Tet10", \
      "" using (pick("tet10", "geometric", 2)):($15/$16) w lp pt 6 dt 2 lc rgb "#d62728" t "geometric, Tet10", \
@@ -31,6 +33,8 @@ set ylabel "||u_h - u||_E / ||u||_E"
 plot "convergence.csv" using (pick("ladder", "none", 1)):($17/$18) w lp pt 9 lc rgb "#2ca02c" t "none, Tet4", \
      "" using (pick("ladder", "topological", 1)):($17/$18) w lp pt 5 lc rgb "#1f77b4" t "topological, Tet4", \
      "" using (pick("ladder", "geometric", 1)):($17/$18) w lp pt 7 lc rgb "#d62728" t "geometric, Tet4", \
+     "" using (pick("corrected", "topological", 1)):($17/$18) w lp pt 13 lc rgb "#17becf" t "topological, corrected, Tet4", \
+     "" using (pick("corrected", "geometric", 1)):($17/$18) w lp pt 11 lc rgb "#9467bd" t "geometric, corrected, Tet4", \
      "" using (pick("tet10", "none", 2)):($17/$18) w lp pt 8 dt 2 lc rgb "#2ca02c" t "none, Tet10", \
      "" using (pick("tet10", "topological", 2)):($17/$18) w lp pt 4 dt 2 lc rgb "#1f77b4" t "topological, Tet10", \
      "" using (pick("tet10", "geometric", 2)):($17/$18) w lp pt 6 dt 2 lc rgb "#d62728" t "geometric, Tet10", \

@@ -173,3 +173,48 @@ TEST_CASE("a node on the cut behind the front is marked on the cut, and one off 
   }
   CHECK(on_cut == 5); // x = 0.25, z = 0.5, five values of y
 }
+
+TEST_CASE("Fries's correction: the ramp nodes are the other corners of the blending tets, keep their sign enrichments, and shift by 0") {
+  const Body body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {4, 4, 4}), kerf::RectangleCut({-0.1, -0.1, 0.55}, {0.5, 0, 0}, {0, 1.2, 0}));
+  for (const double radius : {0.0, 0.3}) {
+    const kerf::TipEnrichmentRule rule = radius > 0.0 ? kerf::TipEnrichmentRule::geometric : kerf::TipEnrichmentRule::topological;
+    const kerf::BranchEnrichment plain = kerf::make_branch_enrichment(body.mesh, body.pieces, body.fronts, rule, radius);
+    const kerf::BranchEnrichment corrected =
+        kerf::make_branch_enrichment(body.mesh, body.pieces, body.fronts, rule, radius, kerf::BlendingCorrection::corrected);
+    // I* and the sign enrichment are the uncorrected ones: the correction only adds slots.
+    CHECK(corrected.kind == plain.kind);
+    CHECK(corrected.sign.num_enrichments() == plain.sign.num_enrichments());
+    CHECK(corrected.blending == plain.blending);
+    // Expected ramp nodes, from the uncorrected enrichment's blending flags alone.
+    std::set<int> expected;
+    for (Eigen::Index t = 0; t < body.mesh.num_tets(); ++t)
+      if (plain.blending[static_cast<std::size_t>(t)])
+        for (int a = 0; a < 4; ++a)
+          if (plain.kind[static_cast<std::size_t>(body.mesh.tets(t, a))] != kerf::NodeEnrichmentKind::branch)
+            expected.insert(body.mesh.tets(t, a));
+    std::set<int> ramp, sign_and_ramp;
+    for (int k = 0; k < corrected.num_branch_nodes(); ++k) {
+      const int v = corrected.branch_node[static_cast<std::size_t>(k)];
+      CHECK(corrected.branch_slot[static_cast<std::size_t>(v)] == k);
+      if (corrected.kind[static_cast<std::size_t>(v)] == kerf::NodeEnrichmentKind::branch) {
+        // A node of I*: its shift is F at the node, as without the correction (R(x_v) = 1).
+        const int k_plain = plain.branch_slot[static_cast<std::size_t>(v)];
+        REQUIRE(k_plain >= 0);
+        CHECK((corrected.node_values[static_cast<std::size_t>(k)] - plain.node_values[static_cast<std::size_t>(k_plain)]).norm() == 0.0);
+        continue;
+      }
+      ramp.insert(v);
+      CHECK(corrected.node_values[static_cast<std::size_t>(k)].norm() == 0.0); // R(x_v) = 0
+      if (corrected.sign.enrichments_of(v) > 0) sign_and_ramp.insert(v);
+    }
+    CHECK(ramp == expected);
+    CHECK(corrected.num_ramp_nodes() == static_cast<int>(expected.size()));
+    CHECK(corrected.num_branch_nodes() == plain.num_branch_nodes() + static_cast<int>(expected.size()));
+    CHECK(plain.num_ramp_nodes() == 0);
+    // Behind the front some ramp nodes' supports are split by the cut: they carry both.
+    CHECK(!ramp.empty());
+    CHECK(!sign_and_ramp.empty());
+    MESSAGE("radius " << radius << ": " << plain.count(kerf::NodeEnrichmentKind::branch) << " nodes in I*, " << ramp.size()
+                      << " ramp nodes, " << sign_and_ramp.size() << " of them sign enriched too");
+  }
+}

@@ -7,10 +7,14 @@
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/cut/rectangle_cut.hpp"
+#include "kerf/fem/dof_map.hpp"
+#include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/point_locator.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
+#include "kerf/xfem/branch_functions.hpp"
+#include "kerf/xfem/branch_null_space.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include "support/cut_body.hpp"
@@ -18,6 +22,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -192,4 +197,116 @@ TEST_CASE("a hanging column cut half-way: the Tet10 field is exact only with the
   const double dropped_error = largest_relative_error(body, wrong, exact, min, max);
   MESSAGE("hanging column, branch rows dropped: largest relative error " << dropped_error);
   CHECK(dropped_error > 1e3 * error);
+}
+
+TEST_CASE("Fries's correction: in a blending tet the field of the branch DOFs is sum_v lambda_v (R F - R(x_v) F(x_v)), its gradient that of central differences") {
+  const kerf::LinearMaterial material(1.0e6, 0.3, 1000.0);
+  const TipBody body(slab(1), {slab_crack()}, material, kerf::TipEnrichmentRule::topological, 0.0, kerf::FrontRule::collapsed, 3, 4, 0,
+                     kerf::BlendingCorrection::corrected);
+  REQUIRE(body.branch.num_ramp_nodes() > 0);
+  // Every branch slot (I* and ramp) gets c_l for function l; nothing else moves.
+  const std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(1.0, -0.5, 0.2), Eigen::Vector3d(-0.3, 0.8, 0.1), Eigen::Vector3d(0.4, 0.4, -0.6),
+                                         Eigen::Vector3d(0.0, -1.0, 0.7)};
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes());
+  for (int k = 0; k < body.branch.num_branch_nodes(); ++k)
+    for (int l = 0; l < 4; ++l) u.segment<3>(3 * (body.model.branch_dof_node(k) + l)) = c[static_cast<std::size_t>(l)];
+  // F from the fronts' polar coordinates and branch_function_values, R from the barycentric
+  // coordinates of the tet's corners in I*: nothing of the model's own evaluation.
+  const auto F_c = [&](const Eigen::Vector3d& x) {
+    const kerf::FrontPolar p = body.fronts.polar(x);
+    const Eigen::Vector4d F = kerf::branch_function_values(p.r, p.theta);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int l = 0; l < 4; ++l) sum += F[l] * c[static_cast<std::size_t>(l)];
+    return sum;
+  };
+  double value_error = 0.0, gradient_error = 0.0, size = 0.0, gradient_size = 0.0;
+  int tets = 0;
+  for (Eigen::Index t = 0; t < body.mesh.num_tets(); ++t) {
+    // Uncut blending tets ahead of the front: F is smooth there, no side to decide.
+    if (!body.branch.blending[static_cast<std::size_t>(t)] || body.pieces.entry[static_cast<std::size_t>(t)] >= 0) continue;
+    const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(body.mesh, t);
+    if (X.col(0).minCoeff() < 0.0) continue;
+    ++tets;
+    Eigen::Vector4d in_I_star;
+    for (int a = 0; a < 4; ++a)
+      in_I_star[a] = body.branch.kind[static_cast<std::size_t>(body.mesh.tets(t, a))] == kerf::NodeEnrichmentKind::branch ? 1.0 : 0.0;
+    REQUIRE(in_I_star.sum() > 0.0);
+    REQUIRE(in_I_star.sum() < 4.0);
+    for (const Eigen::Vector4d& weights : {Eigen::Vector4d(0.1, 0.2, 0.3, 0.4), Eigen::Vector4d(0.55, 0.15, 0.05, 0.25), Eigen::Vector4d(0.25, 0.25, 0.25, 0.25)}) {
+      const Eigen::Vector3d x = X.transpose() * weights;
+      Eigen::Vector3d expected = in_I_star.dot(weights) * F_c(x);
+      for (int a = 0; a < 4; ++a) expected -= weights[a] * in_I_star[a] * F_c(X.row(a).transpose());
+      value_error = std::max(value_error, (body.model.displacement_at(u, t, x) - expected).norm());
+      size = std::max(size, expected.norm());
+      // Central differences with h = 1e-6 m (the tet is 0.1 m, F smooth at r > 0.01 m here).
+      const double h = 1e-6;
+      Eigen::Matrix3d numeric;
+      for (int j = 0; j < 3; ++j)
+        numeric.col(j) = (body.model.displacement_at(u, t, x + h * Eigen::Vector3d::Unit(j)) - body.model.displacement_at(u, t, x - h * Eigen::Vector3d::Unit(j))) / (2 * h);
+      gradient_error = std::max(gradient_error, (body.model.displacement_gradient_at(u, t, x) - numeric).norm());
+      gradient_size = std::max(gradient_size, numeric.norm());
+    }
+  }
+  MESSAGE(tets << " blending tets: value error " << value_error / size << ", gradient error " << gradient_error / gradient_size << " (relative)");
+  REQUIRE(tets > 0);
+  // Both are round-off of one evaluation against another (values) and the central differences'
+  // truncation (h / r)^2 ~ 1e-8 with round-off 1e-16 / h ~ 1e-10 (gradients).
+  CHECK(value_error < 1e-12 * size);
+  CHECK(gradient_error < 1e-6 * gradient_size);
+}
+
+TEST_CASE("Fries's correction on a straight front: the identities' six null vectors, and the two held DOFs that remove them without changing the field") {
+  // Paulus's beam, coarse: the half-depth cut z = 0.1, x < 0.015 whose front crosses the middle of
+  // elements, the end z = 0 clamped, gravity along x. The region of tets with branch functions is
+  // interior (no Dirichlet condition reaches it), so the null vectors of branch_null_space.hpp are free.
+  const kerf::LinearMaterial material{3.0e5, 0.35, 1070.0};
+  const kerf::TriangleSurface cut = kerf::rectangle_surface(kerf::RectangleCut({0.0, 0.0, 0.1}, {0.015, 0.0, 0.0}, {0.0, 0.06, 0.0}));
+  const TipBody body(kerf::make_box_mesh({0, 0, 0}, {0.03, 0.06, 0.2}, {3, 6, 9}), {cut}, material, kerf::TipEnrichmentRule::topological, 0.0,
+                     kerf::FrontRule::collapsed, 3, 4, 0, kerf::BlendingCorrection::corrected);
+  const std::vector<kerf::BranchNullVector> null = kerf::branch_null_vectors(body.model);
+  REQUIRE(null.size() == 2);
+
+  // K N = 0 for each vector and component, with every DOF free: the identities hold at every
+  // quadrature point, so the residual is round-off of |K| |N| (measured below 1e-14).
+  const kerf::DofMap all_free = kerf::make_dof_map(body.model.num_dof_nodes(), {});
+  kerf::SparseAssembler assembler(body.model.assembly_slots(), all_free);
+  Eigen::VectorXd unused = Eigen::VectorXd::Zero(all_free.num_free);
+  body.model.assemble_linear_stiffness(assembler, unused);
+  const Eigen::SparseMatrix<double>& K = assembler.matrix();
+  double K_norm = 0.0;
+  for (int k = 0; k < K.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, k); it; ++it) K_norm = std::max(K_norm, std::abs(it.value()));
+  for (const kerf::BranchNullVector& n : null)
+    for (int component = 0; component < 3; ++component) {
+      Eigen::VectorXd N = Eigen::VectorXd::Zero(all_free.num_free);
+      for (const auto& [dof_node, c] : n.coefficients) N[all_free.free_index[3 * static_cast<std::size_t>(dof_node) + static_cast<std::size_t>(component)]] = c;
+      const double residual = (K * N).norm() / (K_norm * N.norm());
+      MESSAGE("|K N| / (max |K_ij| |N|) = " << residual);
+      CHECK(residual < 1e-12);
+    }
+
+  // The clamped beam: make_cut_xfem_dof_map holds the two gauge DOF nodes, CHOLMOD factorises,
+  // and the solution satisfies the equations of the held DOFs too (their rows of K u - f vanish),
+  // which is what "the field space is unchanged" means: no equation was dropped.
+  std::vector<kerf::DirichletNodes> clamp{{{}, Eigen::Vector3d::Zero()}};
+  for (Eigen::Index v = 0; v < body.mesh.num_nodes(); ++v)
+    if (body.mesh.nodes(v, 2) < 1e-12) clamp[0].nodes.push_back(static_cast<int>(v));
+  const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(body.model, clamp);
+  const std::vector<int> gauge = kerf::branch_gauge_dof_nodes(body.model, kerf::make_dof_map(body.model.num_dof_nodes(), clamp));
+  CHECK(gauge.size() == 2);
+  const Eigen::VectorXd f = body.model.gravity_load(material.density, {9.81, 0.0, 0.0});
+  const Eigen::VectorXd u = kerf::solve_linear_cut_xfem(body.model, dofs, f, kerf::SolverSettings{});
+  REQUIRE(u.allFinite());
+  // The same prescriptions without the gauge: its rows are equations again.
+  std::vector<kerf::DirichletNodes> without_gauge{{{}, Eigen::Vector3d::Zero()}};
+  for (int d = 0; d < static_cast<int>(body.model.num_dof_nodes()); ++d)
+    if (dofs.free_index[3 * static_cast<std::size_t>(d)] < 0 && std::find(gauge.begin(), gauge.end(), d) == gauge.end()) without_gauge[0].nodes.push_back(d);
+  const kerf::DofMap ungauged = kerf::make_dof_map(body.model.num_dof_nodes(), without_gauge);
+  kerf::SparseAssembler full(body.model.assembly_slots(), ungauged);
+  Eigen::VectorXd lifted = Eigen::VectorXd::Zero(ungauged.num_free);
+  body.model.assemble_linear_stiffness(full, lifted);
+  const Eigen::VectorXd residual = full.matrix() * ungauged.restrict_to_free(u) - ungauged.restrict_to_free(f) - lifted;
+  const double relative = residual.norm() / ungauged.restrict_to_free(f).norm();
+  MESSAGE("corrected beam: " << body.branch.num_ramp_nodes() << " ramp nodes; residual of every equation, held gauge rows included, " << relative);
+  CHECK(relative < 1e-9);
 }

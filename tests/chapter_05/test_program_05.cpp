@@ -230,6 +230,20 @@ TEST_CASE("bad crack_tip input is one line naming the field; the corotated model
   one_line_naming(run("enrichment", demo_scene_with("linear", R"({"enrichment": "tip"})")), "crack_tip.enrichment");
   one_line_naming(run("radius", demo_scene_with("linear", R"({"radius": -0.01})")), "crack_tip.radius");
   one_line_naming(run("unknown", demo_scene_with("linear", R"({"radius": 0.01, "rule": "geometric"})")), "crack_tip");
+  one_line_naming(run("blending", demo_scene_with("linear", R"({"blending": "ramp"})")), "crack_tip.blending");
+  // Fries's correction is refused with the corotated model (its Newton stalled: 314 iterations
+  // over 10 load steps, final relative residual 0.91, every one on the warped fallback)...
+  one_line_naming(run("corrected_corotated", demo_scene_with("corotational", R"({"radius": 0, "blending": "corrected"})")), "crack_tip.blending");
+  // ... and runs with the linear one: the ramp nodes are counted, and the two null vectors of
+  // the straight front are held (branch_null_space.hpp), so that CHOLMOD factorises.
+  kerf_test::write_text(dir / "corrected.json", demo_scene_with("linear", R"({"radius": 0, "blending": "corrected"})"));
+  const auto corrected =
+      kerf_test::run_program(chapter_05 + " --scene '" + (dir / "corrected.json").string() + "' --out '" + (dir / "corrected").string() + "'", dir);
+  INFO(corrected.out, corrected.err);
+  CHECK(corrected.exit_status == 0);
+  CHECK(corrected.out.find("ramp nodes (blending corrected)") != std::string::npos);
+  CHECK(number_after(corrected.out, "sign nodes, ") > 0); // "... N sign nodes, M ramp nodes"
+  CHECK(corrected.err.empty());
   // The corotated model with branch functions runs: Newton converges in every load step (the
   // program warns on stderr if a step misses the tolerance, even with --quiet). Its answers are
   // tested in test_corotational_branch.cpp.

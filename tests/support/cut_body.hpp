@@ -47,9 +47,9 @@ struct TipBody {
   kerf::CutXfemModel model;
   TipBody(kerf::TetMesh m, std::vector<kerf::TriangleSurface> surfaces, const kerf::LinearMaterial& material,
           kerf::TipEnrichmentRule rule, double radius, kerf::FrontRule front_rule = kerf::FrontRule::collapsed, int front_points = 0,
-          int blending_degree = 6, int blending_depth = 3)
+          int blending_degree = 6, int blending_depth = 3, kerf::BlendingCorrection blending = kerf::BlendingCorrection::none)
       : mesh(std::move(m)), cuts(std::move(surfaces)), pieces(kerf::cut_mesh_into_pieces(mesh, cuts)),
-        fronts(kerf::find_crack_fronts(mesh, cuts)), branch(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, radius)),
+        fronts(kerf::find_crack_fronts(mesh, cuts)), branch(kerf::make_branch_enrichment(mesh, pieces, fronts, rule, radius, blending)),
         functions{branch, fronts, front_rule, front_points, blending_degree, blending_depth},
         model(mesh, material, pieces, branch.sign, subtets, &functions) {}
 };

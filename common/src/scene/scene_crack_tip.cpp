@@ -16,7 +16,9 @@ SceneCrackTip::SceneCrackTip(const Scene& scene, const TetMesh& mesh, const Mesh
   default_radius_ = !scene.crack_tip.radius.has_value();
   radius_ = default_radius_ ? default_tip_enrichment_radius(mesh, fronts_) : *scene.crack_tip.radius;
   rule_ = radius_ > 0.0 ? TipEnrichmentRule::geometric : TipEnrichmentRule::topological;
-  branch_enrichment_ = make_branch_enrichment(mesh, pieces, fronts_, rule_, radius_);
+  const BlendingCorrection blending =
+      scene.crack_tip.blending == "corrected" ? BlendingCorrection::corrected : BlendingCorrection::none;
+  branch_enrichment_ = make_branch_enrichment(mesh, pieces, fronts_, rule_, radius_, blending);
   // The rules: the model's collapsed rule, exact in r, in the tets the front crosses
   // (front_quadrature.hpp), and its graded Gauss rules of degree 6 in the other tets with branch
   // nodes, but refined at most once towards the front (blending_depth 1, not the model's 3). The

@@ -63,7 +63,7 @@ bool node_on_a_cut(const TetMesh& mesh, const MeshPieces& pieces, Eigen::Index i
 int BranchEnrichment::count(NodeEnrichmentKind k) const { return static_cast<int>(std::count(kind.begin(), kind.end(), k)); }
 
 BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& pieces, const CrackFronts& fronts,
-                                        TipEnrichmentRule rule, double radius) {
+                                        TipEnrichmentRule rule, double radius, BlendingCorrection blending) {
   if (!(radius >= 0.0) || !std::isfinite(radius))
     throw std::invalid_argument("make_branch_enrichment: the enrichment radius must be finite and >= 0");
   const Eigen::Index V = mesh.num_nodes(), T = mesh.num_tets();
@@ -105,12 +105,30 @@ BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& p
       if (corner[static_cast<std::size_t>(i)] && fronts.distance(mesh.nodes.row(i).transpose()) <= radius)
         branch[static_cast<std::size_t>(i)] = 1;
 
+  // Fries's ramp nodes: the corners of the blending tets that are not in I*.
+  std::vector<char> ramp(static_cast<std::size_t>(V), 0);
+  if (blending == BlendingCorrection::corrected)
+    for (Eigen::Index t = 0; t < T; ++t) {
+      bool any = false;
+      for (int a = 0; a < 4; ++a) any = any || branch[static_cast<std::size_t>(mesh.tets(t, a))];
+      if (any)
+        for (int a = 0; a < 4; ++a)
+          if (!branch[static_cast<std::size_t>(mesh.tets(t, a))]) ramp[static_cast<std::size_t>(mesh.tets(t, a))] = 1;
+    }
+
+  result.blending_correction = blending;
   result.sign = without_nodes(make_surface_enrichment(mesh, pieces), branch);
   result.kind.assign(static_cast<std::size_t>(V), NodeEnrichmentKind::none);
   result.branch_slot.assign(static_cast<std::size_t>(V), -1);
   result.cut_side.assign(static_cast<std::size_t>(V), 0);
   for (Eigen::Index i = 0; i < V; ++i) {
-    if (branch[static_cast<std::size_t>(i)]) {
+    if (result.sign.enrichments_of(i) > 0) result.kind[static_cast<std::size_t>(i)] = NodeEnrichmentKind::sign;
+    if (ramp[static_cast<std::size_t>(i)]) {
+      // R(x_i) = 0: the shift R(x_i) F(x_i) vanishes whatever side of the cut the node is on.
+      result.branch_slot[static_cast<std::size_t>(i)] = static_cast<int>(result.branch_node.size());
+      result.branch_node.push_back(static_cast<int>(i));
+      result.node_values.push_back(Eigen::Vector4d::Zero());
+    } else if (branch[static_cast<std::size_t>(i)]) {
       result.kind[static_cast<std::size_t>(i)] = NodeEnrichmentKind::branch;
       result.branch_slot[static_cast<std::size_t>(i)] = static_cast<int>(result.branch_node.size());
       result.branch_node.push_back(static_cast<int>(i));
@@ -119,8 +137,6 @@ BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& p
       result.cut_side[static_cast<std::size_t>(i)] = side;
       const FrontPolar p = fronts.polar(mesh.nodes.row(i).transpose(), side);
       result.node_values.push_back(branch_function_values(p.r, p.theta));
-    } else if (result.sign.enrichments_of(i) > 0) {
-      result.kind[static_cast<std::size_t>(i)] = NodeEnrichmentKind::sign;
     }
   }
   result.has_branch_nodes.assign(static_cast<std::size_t>(T), 0);

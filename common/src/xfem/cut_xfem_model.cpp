@@ -10,6 +10,7 @@
 #include "kerf/quadrature/front_quadrature.hpp"
 #include "kerf/quadrature/gauss_piece_rules.hpp"
 #include "kerf/xfem/branch_functions.hpp"
+#include "kerf/xfem/branch_null_space.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -49,6 +50,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
   first_branch_slot_.assign(static_cast<std::size_t>(T), -1);
   branch_local_nodes_.assign(static_cast<std::size_t>(T), {});
   branch_nodal_values_.assign(static_cast<std::size_t>(T), {});
+  ramp_corners_.assign(static_cast<std::size_t>(T), Eigen::Vector4d::Ones());
   int width = n;
   for (Eigen::Index t = 0; t < T; ++t) {
     std::vector<int>& list = extra[static_cast<std::size_t>(t)];
@@ -62,7 +64,14 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       for (int a = 0; a < 4; ++a)
         if (tip->enrichment.branch_slot[static_cast<std::size_t>(mesh.tets(t, a))] >= 0) branch_local_nodes_[static_cast<std::size_t>(t)].push_back(a);
       slots += 4 * static_cast<int>(branch_local_nodes_[static_cast<std::size_t>(t)].size());
-      // F at the tet's nodes for the shift: a branch corner's own value (its cut side decided),
+      // Fries's ramp R = sum of the hats of the corners in I* (branch_enrichment.hpp); without
+      // the correction R = 1, the sum of all four.
+      Eigen::Vector4d& ramp = ramp_corners_[static_cast<std::size_t>(t)];
+      ramp.setOnes();
+      if (tip->enrichment.blending_correction == BlendingCorrection::corrected)
+        for (int a = 0; a < 4; ++a)
+          ramp[a] = tip->enrichment.kind[static_cast<std::size_t>(mesh.tets(t, a))] == NodeEnrichmentKind::branch ? 1.0 : 0.0;
+      // R F at the tet's nodes for the shift: a branch corner's own value (its cut side decided),
       // every other node's from its position, the same in every tet that shares it.
       Eigen::Matrix<double, 4, Eigen::Dynamic>& F_nodes = branch_nodal_values_[static_cast<std::size_t>(t)];
       F_nodes.resize(4, n);
@@ -73,7 +82,10 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
           F_nodes.col(a) = tip->enrichment.node_values[static_cast<std::size_t>(k)];
         } else {
           const FrontPolar polar = tip->fronts.polar(mesh.nodes.row(node).transpose());
-          F_nodes.col(a) = branch_function_values(polar.r, polar.theta);
+          // R at the node: its corner's weight, or the mean of its edge's two (a Tet10 midpoint).
+          const double R = a < 4 ? ramp[a]
+                                 : 0.5 * (ramp[tet_edge_corners[a - 4][0]] + ramp[tet_edge_corners[a - 4][1]]);
+          F_nodes.col(a) = R * branch_function_values(polar.r, polar.theta);
         }
       }
     }
@@ -287,6 +299,18 @@ Eigen::Matrix<double, 4, Eigen::Dynamic> CutXfemModel::branch_functions_at(Eigen
     N = tet10_shape(xi);
     G = tet10_shape_gradients(xi) * J_inverse;
   }
+  // Fries's ramp (branch_enrichment.hpp): R F and its gradient R dF/dx + F grad R in place of F
+  // (R = 1 without the correction, and in every tet whose four corners are in I*).
+  const Eigen::Vector4d& ramp = ramp_corners_[static_cast<std::size_t>(t)];
+  BranchValues ramped = at_x;
+  if (ramp != Eigen::Vector4d::Ones()) {
+    const double R = ramp.dot(lambda);
+    const Eigen::RowVector3d grad_R = ramp.transpose() * grad_lambda;
+    for (int l = 0; l < 4; ++l) {
+      ramped.F[l] = R * at_x.F[l];
+      ramped.dF_dx.row(l) = R * at_x.dF_dx.row(l) + at_x.F[l] * grad_R;
+    }
+  }
   const Eigen::Matrix<double, 4, Eigen::Dynamic>& F_nodes = branch_nodal_values_[static_cast<std::size_t>(t)];
   for (std::size_t j = 0; j < branch_nodes.size(); ++j) {
     const int v = branch_nodes[j];
@@ -301,9 +325,9 @@ Eigen::Matrix<double, 4, Eigen::Dynamic> CutXfemModel::branch_functions_at(Eigen
         }
     for (int l = 0; l < 4; ++l) {
       const Eigen::Index column = 4 * static_cast<Eigen::Index>(j) + l;
-      result(0, column) = lambda[v] * at_x.F[l] - shift[l];
+      result(0, column) = lambda[v] * ramped.F[l] - shift[l];
       result.block<3, 1>(1, column) =
-          (at_x.F[l] * grad_lambda.row(v) + lambda[v] * at_x.dF_dx.row(l) - grad_shift.row(l)).transpose();
+          (ramped.F[l] * grad_lambda.row(v) + lambda[v] * ramped.dF_dx.row(l) - grad_shift.row(l)).transpose();
     }
   }
   return result;
@@ -742,7 +766,14 @@ DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<Dirich
   // First, so that a condition the caller puts on an enrichment itself has the last word.
   std::vector<DirichletNodes> with_enrichments{enrichments_of_gripped};
   with_enrichments.insert(with_enrichments.end(), conditions.begin(), conditions.end());
-  return make_dof_map(model.num_dof_nodes(), with_enrichments);
+  DofMap dofs = make_dof_map(model.num_dof_nodes(), with_enrichments);
+  // The null vectors of the branch functions' identities that these conditions leave free, each
+  // removed by holding one branch DOF at 0 (branch_null_space.hpp: the field space is the same).
+  if (const std::vector<int> gauge = branch_gauge_dof_nodes(model, dofs); !gauge.empty()) {
+    with_enrichments.push_back({gauge, Eigen::Vector3d::Zero()});
+    dofs = make_dof_map(model.num_dof_nodes(), with_enrichments);
+  }
+  return dofs;
 }
 
 Eigen::VectorXd solve_linear_cut_xfem(const CutXfemModel& model, const DofMap& dofs, const Eigen::VectorXd& f_ext,

@@ -94,6 +94,9 @@ struct CrackTipSpec {
   /// beside the nodes of the tets the front passes through (radius 0: those alone, the
   /// topological rule). Not given: the chapter's default (chapters/05_crack_tip says which).
   std::optional<double> radius;
+  /// "none": Paulus's blending, the branch nodes' functions as they are; "corrected": Fries's
+  /// ramp over the blending tets (branch_enrichment.hpp), linear model only.
+  std::string blending = "none";
   bool given = false; ///< the scene has a "crack_tip" field (chapters before 5 refuse it)
 };
 

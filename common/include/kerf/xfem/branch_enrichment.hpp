@@ -27,6 +27,19 @@
 /// Blending tets (notes 5.6): tets with some, not all, nodes branch enriched. The tets with a
 /// branch node are where the model integrates the branch functions (uncut blending tets
 /// included: Paulus's "uncut blending element").
+///
+/// In a blending tet the branch nodes' hats no longer sum to one, so the enrichment there is not
+/// F itself but a part of it, which the standard shape functions cannot make up: the
+/// blending error (Chessa et al. 2003). Fries's corrected XFEM (2008; notes 5.6) cures it by
+/// multiplying the functions by the ramp
+///
+///   R(x) = sum_{i in I*} lambda_i(x)        (I*: the branch nodes chosen above)
+///
+/// and enriching every corner of the blending tets with R F (BlendingCorrection::corrected):
+/// then sum_v lambda_v R F = R F holds in every tet, F where all corners are in I* and falling
+/// linearly to zero across the blending tets, and nothing of F leaks into the tets beyond them
+/// (R = 0 there). The extra corners, the ramp nodes, keep their sign enrichments: such a node
+/// behind the front carries both (its shift R(x_v) F(x_v) is 0, since R(x_v) = 0).
 #pragma once
 
 #include "kerf/cut/crack_front.hpp"
@@ -45,22 +58,32 @@ enum class TipEnrichmentRule : signed char {
   geometric,   ///< every node within a radius of the front, and the topological ones
 };
 
+/// How the tets with some, not all, corners branch enriched are treated (the header's comment).
+enum class BlendingCorrection : signed char {
+  none,      ///< Paulus's: the branch nodes' functions as they are, the blending error kept
+  corrected, ///< Fries 2008: every function times the ramp R, every corner of a blending tet enriched
+};
+
 /// What a node carries beyond its standard DOFs.
 enum class NodeEnrichmentKind : signed char {
   none,   ///< nothing
   sign,   ///< chapter 4's enrichments (one or more; 3 DOFs each)
-  branch, ///< the four branch functions (12 DOFs)
+  branch, ///< the four branch functions (12 DOFs): a node of I*
 };
 
 /// The enrichment of a mesh whose cuts may end inside it.
 struct BranchEnrichment {
-  std::vector<NodeEnrichmentKind> kind; ///< #V
-  /// #V: the branch slot k of a branch node (its functions F_1..F_4 are enrichments 4k .. 4k+3
-  /// of the branch block), -1 for the others.
+  /// #V: a node of I* is `branch`; a ramp node (BlendingCorrection::corrected) keeps the kind of
+  /// its sign enrichments, `sign` or `none`, and has a branch slot all the same.
+  std::vector<NodeEnrichmentKind> kind;
+  BlendingCorrection blending_correction = BlendingCorrection::none;
+  /// #V: the branch slot k of a node with branch functions, a node of I* or a ramp node (its
+  /// functions F_1..F_4 are enrichments 4k .. 4k+3 of the branch block), -1 for the others.
   std::vector<int> branch_slot;
   std::vector<int> branch_node;         ///< N_B: the node of each slot
-  /// N_B: F_l(x_i) at each branch node, for the shift N_i (F_l(x) - F_l(x_i)): with theta = +pi
-  /// for a node lying on the cut, the side chapter 4 gives such a node (above).
+  /// N_B: R(x_i) F_l(x_i) at each slot's node, for the shift N_i (R F_l(x) - R F_l(x_i)): with
+  /// theta = +pi for a node lying on the cut, the side chapter 4 gives such a node (above).
+  /// R(x_i) is 1 at a node of I* (and everywhere without the correction), 0 at a ramp node.
   std::vector<Eigen::Vector4d> node_values;
   /// #V: +1 for a node lying on a cut, so that theta = +pi there (CrackFronts::polar's cut_side),
   /// 0 for the others. Only branch nodes are looked at. "On a cut" is a corner of a cut polygon
@@ -77,7 +100,10 @@ struct BranchEnrichment {
   /// pointing to the remaining ones): what the model uses for the sign DOFs.
   SurfaceEnrichment sign;
 
+  /// The number of branch slots: the nodes of I* and, corrected, the ramp nodes.
   int num_branch_nodes() const { return static_cast<int>(branch_node.size()); }
+  /// The number of ramp nodes: slots whose node is not in I* (0 without the correction).
+  int num_ramp_nodes() const { return num_branch_nodes() - count(NodeEnrichmentKind::branch); }
   /// The number of nodes of each kind.
   int count(NodeEnrichmentKind k) const;
 };
@@ -88,8 +114,10 @@ struct BranchEnrichment {
 /// @param fronts   find_crack_fronts(mesh, cuts)
 /// @param rule     topological or geometric
 /// @param radius   r_e of the geometric rule (m), >= 0; ignored by the topological rule
+/// @param blending none, or Fries's correction (the ramp nodes get branch slots too)
 /// @throws std::invalid_argument for a negative or non-finite radius
 BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& pieces, const CrackFronts& fronts,
-                                        TipEnrichmentRule rule, double radius = 0.0);
+                                        TipEnrichmentRule rule, double radius = 0.0,
+                                        BlendingCorrection blending = BlendingCorrection::none);
 
 } // namespace kerf

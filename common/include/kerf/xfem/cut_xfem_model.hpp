@@ -91,7 +91,9 @@ struct CrackTipFunctions {
 /// phantom element alone no longer describes such a tet: at each quadrature point the model
 /// adds the branch functions' gradients to the phantom element's, and integrates the tet by its
 /// front or blending rule (FrontRule). The branch nodes have no sign enrichments
-/// (BranchEnrichment::sign): a node is never both (Paulus section 3.3).
+/// (BranchEnrichment::sign): a node is never both (Paulus section 3.3). With Fries's blending
+/// correction F_l is R F_l throughout, R the ramp of branch_enrichment.hpp, and every corner of a
+/// blending tet has the four functions; the ramp nodes among them keep their sign enrichments.
 ///
 /// Corotation of a tet with branch functions (issue 10, item 7): one rotation per piece, that of
 /// the piece's mean deformation gradient, with the branch coefficients turned like the sign
@@ -253,7 +255,8 @@ private:
   // that are branch enriched; -1 and empty elsewhere.
   std::vector<int> first_branch_slot_;
   std::vector<std::vector<int>> branch_local_nodes_;
-  std::vector<Eigen::Matrix<double, 4, Eigen::Dynamic>> branch_nodal_values_; // per such tet: F_l at its n nodes (4 x n)
+  std::vector<Eigen::Matrix<double, 4, Eigen::Dynamic>> branch_nodal_values_; // per such tet: R F_l at its n nodes (4 x n)
+  std::vector<Eigen::Vector4d> ramp_corners_; // per tet: 1 for the corners in I* (all four without Fries's correction)
   TetMatrix slots_;
   std::vector<std::vector<Piece>> piece_data_; // per tet; empty for tets integrated whole
   std::vector<Piece> whole_;                    // per tet integrated whole: its own rule (filled for all tets)
