@@ -192,6 +192,23 @@ TEST_CASE("one tet split 2:2 is crossed at its fourth crossed edge, not its thir
   }
 }
 
+TEST_CASE("a blade stopped exactly on a tet's last crossing point has crossed it: swept triangles are closed") {
+  kerf::TetMesh tet;
+  tet.nodes.resize(4, 3);
+  tet.nodes << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  tet.tets.resize(1, 4);
+  tet.tets << 0, 1, 2, 3;
+  // The plane z = 1/4 isolates corner 3; it crosses edges 0-3, 2-3 and 1-3 at x = 0, 0 and 3/4.
+  // The edge runs along y and moves along x (all coordinates dyadic, so every test is exact).
+  const StraightBlade blade{{-1, -1, 0.25}, {0, 3, 0}, {1, 0, 0}};
+  kerf::SemiProgressiveCut cut(tet);
+  CHECK(cut.add_swept_triangles(kerf::swept_quad(blade.at(0.0), blade.at(1.5))).empty()); // edge at x = 1/2
+  CHECK(cut.num_crossed_edges(0) == 2);
+  CHECK(cut.add_swept_triangles(kerf::swept_quad(blade.at(1.5), blade.at(1.75))) == std::vector<int>{0}); // at x = 3/4: on the point
+  CHECK(cut.num_crossed_edges(0) == 3);
+  CHECK(cut.edge_crossing(cut.tet_edges(0)[4]).point == Eigen::Vector3d(0.75, 0, 0.25)); // edge (1, 3), exact
+}
+
 TEST_CASE("a trembling blade crosses no edge twice: forward, back and forward again change nothing") {
   const kerf::TetMesh mesh = unit_box();
   const TiltedPlane plane;
@@ -240,6 +257,15 @@ TEST_CASE("degenerate sheets: through a row of nodes, in a plane of faces, grazi
     for (const int t : crossed)
       for (int a = 0; a < 4; ++a) through_corner += cut.node_on_sheet(mesh.tets(t, a)) ? 1 : 0;
     CHECK(through_corner > 0);
+    // A crossed tet's cut points: 3 (a corner cut off) or 4 (2:2) crossing points, or, with corners
+    // on the sheet, 2 crossings and the corner, or 1 crossing and the two corners of an edge on the row.
+    for (const int t : crossed) {
+      int on_sheet = 0;
+      for (int a = 0; a < 4; ++a) on_sheet += cut.node_on_sheet(mesh.tets(t, a)) ? 1 : 0;
+      const std::size_t points = cut.cut_points(t).size();
+      CHECK((on_sheet == 0 ? points == 3 || points == 4 : points == 3));
+      CHECK(cut.num_crossed_edges(t) + on_sheet == static_cast<int>(points));
+    }
     // No edge along the row is crossed: it lies in the sheet.
     for (int e = 0; e < cut.num_edges(); ++e) {
       const auto [a, b] = cut.edge_nodes(e);

@@ -37,9 +37,10 @@
 
 namespace kerf {
 
-/// Where the sheet crossed one mesh edge.
+/// Where the sheet crossed one mesh edge. Whether it is crossed is decided exactly; the point is
+/// computed in doubles, s = h_a / (h_a - h_b) from the ends' heights over the triangle's plane.
 struct EdgeCrossing {
-  double parameter = 0.0;                          ///< s in (0, 1) with point = (1 - s) x_a + s x_b, a < b the edge's nodes
+  double parameter = 0.0;                          ///< s in [0, 1] with point = (1 - s) x_a + s x_b, a < b the edge's nodes
   Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< m, in the reference configuration
 };
 
