@@ -43,15 +43,15 @@ double rate(double e_coarse, double e_fine, double h_coarse, double h_fine) { re
 TEST_CASE("geometric enrichment converges fastest in L2; without branch functions the L2 rate is h^1 and the error largest") {
   // Measured on n = 9, 17 (examples/05_convergence_study.cpp, parts "small" and "ladder";
   // figures/05_crack_tip/convergence.md), relative L2 errors and rates:
-  //   none         4.51e-2, 2.34e-2  rate 1.04   (on to n = 33, 65: 0.88, 0.94)
-  //   topological  1.90e-2, 7.36e-3  rate 1.49   (1.35, 1.04: back to h^1)
-  //   geometric    1.90e-2, 6.84e-3  rate 1.60   (1.81, 1.75: levelling off below h^2, see convergence.md)
-  // energy rates 0.65, 0.60, 0.76. These meshes are pre-asymptotic for geometric enrichment
+  //   none         4.35e-2, 2.31e-2  rate 1.00   (on to n = 33, 65: 0.86, 0.93)
+  //   topological  1.36e-2, 5.51e-3  rate 1.42   (1.10, 0.91: back to h^1)
+  //   geometric    1.36e-2, 5.02e-3  rate 1.56   (1.66, 1.71: levelling off below h^2, see convergence.md)
+  // energy rates 0.66, 0.61, 0.74. These meshes are pre-asymptotic for geometric enrichment
   // (r_e = 0.1 m is 0.9 h on n = 9, 1.7 h on n = 17): its best rate shows only from n = 17 to
   // 33 and 65, which takes minutes, too long for a test. The test asserts the ordering and the rates these
   // two meshes do show, each bound between the measured value and the neighbouring case's so
-  // that a change that lost the branch functions (geometric falling to topological's 1.49 or
-  // to none's 1.04) or the enrichment (none's h^1 rising) fails.
+  // that a change that lost the branch functions (geometric falling to topological's 1.42 or
+  // to none's 1.00) or the enrichment (none's h^1 rising) fails.
   const int coarse = 9, fine = 17;
   struct Case {
     ws::TipEnrichment enrichment;
@@ -67,7 +67,7 @@ TEST_CASE("geometric enrichment converges fastest in L2; without branch function
                                    << c.rate_L2() << "); energy " << c.coarse.errors.relative_energy() << ", " << c.fine.errors.relative_energy()
                                    << " (rate " << c.rate_energy() << ")");
   const Case &none = cases[0], &topological = cases[1], &geometric = cases[2];
-  CHECK(geometric.rate_L2() > 1.55);
+  CHECK(geometric.rate_L2() > 1.5);
   CHECK(geometric.rate_L2() > topological.rate_L2() + 0.05);
   CHECK(topological.rate_L2() > 1.3);
   CHECK(none.rate_L2() < 1.2);
@@ -83,7 +83,7 @@ TEST_CASE("Galerkin's solution is the best fit in energy: its error below the in
   // The boundary condition is the XFEM interpolant of the exact field (williams_slab.hpp), so
   // the discrete solution minimises the energy error among the fields with those boundary values,
   // the interpolant among them: an independent check of the error measure, the interpolant and
-  // the assembly together (measured on n = 9: 1.06 vs 1.20, 0.46 vs 0.53 for none and geometric).
+  // the assembly together (measured on n = 9: 1.04 vs 1.19, 0.41 vs 0.47 for none and geometric).
   for (const ws::TipEnrichment e : {ws::TipEnrichment::none, ws::TipEnrichment::geometric}) {
     ws::Setup s;
     s.cells = 9;
@@ -93,8 +93,10 @@ TEST_CASE("Galerkin's solution is the best fit in energy: its error below the in
     const ws::Errors interpolated = ws::measure_errors(slab, slab.interpolant());
     const std::string enrichment = ws::name(e);
     CAPTURE(enrichment);
+    MESSAGE(enrichment << ": energy error " << solved.energy / solved.energy_exact << " against the interpolant's "
+                       << interpolated.energy / interpolated.energy_exact << "; L2 ratio interpolant / solution " << interpolated.L2 / solved.L2);
     CHECK(solved.energy < interpolated.energy);
-    // And it is close to the solution in L2 too (measured ratios 0.86 for none, 1.13 geometric).
+    // And it is close to the solution in L2 too (measured ratios 0.82 for none, 1.16 geometric).
     CHECK(interpolated.L2 < 1.5 * solved.L2);
   }
 }
