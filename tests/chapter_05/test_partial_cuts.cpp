@@ -3,6 +3,7 @@
 // that half circle, and with branch functions the cut must open behind the front and stay
 // closed (the field continuous) ahead of it.
 #include "kerf/cut/cut_surfaces.hpp"
+#include "kerf/cut/height_field_surface.hpp"
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/node_region.hpp"
@@ -89,4 +90,55 @@ TEST_CASE("a half-disc cut: its front is the half circle, and the cut opens behi
   // Behind it the cut is open: measured 0.53 mm under the beam's own weight; a tenth of that
   // is asked for, fifty times the continuous field's largest difference allowed above.
   CHECK(behind > 5e-5);
+}
+
+TEST_CASE("a curved cut whose front tets see it off the frame's half-plane: the declining sine opens all the way to its front") {
+  // Paulus's sinusoidal blade with its amplitude falling towards the front (section 5.3):
+  // z = 0.1 + A (1 - x / 0.03) sin(2 pi y / 0.06) for x < 0.015, A = 4 mm. Along a line y = const
+  // the cut is straight in x and tilted, while the front frame's half-plane
+  // theta = +-pi is tangent to the cut only at the front. Before the front tets took each
+  // point's side from the closest cut triangle, F_1 jumped on that half-plane, not on the cut,
+  // and the opening fell to 1e-7 m from 3 mm behind the front on the study's mesh
+  // (figures/05_crack_tip/partial.md).
+  const double A = 0.004, x0 = 0.015;
+  const auto h = [=](double x, double y) { return A * (1.0 - x / 0.03) * std::sin(2.0 * M_PI * y / 0.06); };
+  const kerf::TriangleSurface sheet = kerf::height_field_surface(h, plane_z, {-0.01, -0.01}, {x0, 0.07}, {25, 80});
+  const kerf::LinearMaterial material{};
+  const kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {0.03, 0.06, 0.2}, {3, 4, 11});
+  const kerf::CrackTipBody body(mesh, {sheet}, material, kerf::TipTreatment::geometric, 0.0,
+                                kerf::BranchRules{kerf::FrontRule::refined_subtets, 2, 3, 0});
+  REQUIRE(body.fronts().polylines.size() == 1);
+  kerf::NodeRegion base;
+  base.box_max = {0.03, 0.06, 0.0};
+  const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(body.model(), {{kerf::nodes_in_region(mesh, base), {0, 0, 0}}});
+  const Eigen::VectorXd u =
+      kerf::solve_linear_cut_xfem(body.model(), dofs, body.model().gravity_load(material.density, {9.81, 0, 0}), kerf::SolverSettings{});
+  REQUIRE(u.allFinite());
+  const kerf::PointLocator locator(mesh);
+  const auto at = [&](const Eigen::Vector3d& x) {
+    const kerf::PointLocation where = locator.locate(x);
+    REQUIRE(where.tet >= 0);
+    return body.model().displacement_at(u, where.tet, x);
+  };
+  // The opening across the cut at distance s behind the front along y = 0.015, d = 1e-7 m off
+  // the cut along its normal (-dh/dx, -dh/dy, 1). The sheet's vertices lie on the lines
+  // x = -0.01 + i mm, y = -0.01 + j mm, so along y = 0.015 and at whole millimetres of x the
+  // triangles are the surface z = h exactly (h is linear in x): elsewhere the chords lie up to
+  // 5 um off it, fifty times d.
+  const double y = 0.015, w = 2.0 * M_PI / 0.06;
+  const auto opening = [&](double s) {
+    const double x = x0 - s;
+    const Eigen::Vector3d normal =
+        Eigen::Vector3d(A / 0.03 * std::sin(w * y), -A * (1.0 - x / 0.03) * w * std::cos(w * y), 1.0).normalized();
+    const Eigen::Vector3d p(x, y, plane_z + h(x, y));
+    return (at(p + 1e-7 * normal) - at(p - 1e-7 * normal)).norm();
+  };
+  const double o1 = opening(0.001), o3 = opening(0.003), o6 = opening(0.006), ahead = opening(-0.002);
+  MESSAGE("declining sine: opening 1, 3, 6 mm behind the front " << o1 << ", " << o3 << ", " << o6 << " m; 2 mm ahead " << ahead << " m");
+  // Open behind the front, growing away from it, and closed ahead of it (the continuous field's
+  // 2e-7 m |grad u|, as for the half disc).
+  CHECK(o1 > 5e-5);
+  CHECK(o3 > o1);
+  CHECK(o6 > o3);
+  CHECK(ahead < 1e-6);
 }

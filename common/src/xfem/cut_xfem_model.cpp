@@ -2,6 +2,7 @@
 
 #include "kerf/corotation/corotated_element.hpp"
 #include "kerf/corotation/corotated_piece.hpp"
+#include "kerf/cut/point_side.hpp"
 #include "kerf/fem/tet_quadrature.hpp"
 #include "kerf/fem/tet_shape_functions.hpp"
 #include "kerf/fem/rigid_motion_check.hpp"
@@ -29,6 +30,20 @@ Eigen::Matrix3d corner_jacobian(const Corners& X) {
   Eigen::Matrix3d J;
   for (int c = 0; c < 3; ++c) J.col(c) = (X.row(c + 1) - X.row(0)).transpose();
   return J;
+}
+
+// The cut triangles one tet was split by, as a surface (for closest_triangle_side).
+TriangleSurface local_cut_surface(const TetPieces& pieces) {
+  TriangleSurface surface;
+  const auto m = static_cast<Eigen::Index>(pieces.triangles.size());
+  surface.vertices.resize(3 * m, 3);
+  surface.triangles.resize(m, 3);
+  for (Eigen::Index k = 0; k < m; ++k)
+    for (int c = 0; c < 3; ++c) {
+      surface.vertices.row(3 * k + c) = pieces.triangles[static_cast<std::size_t>(k)].corners[static_cast<std::size_t>(c)].transpose();
+      surface.triangles(k, c) = static_cast<int>(3 * k + c);
+    }
+  return surface;
 }
 
 } // namespace
@@ -263,6 +278,13 @@ Eigen::Matrix<double, 4, Eigen::Dynamic> CutXfemModel::branch_functions_at(Eigen
   const std::vector<int>& branch_nodes = branch_local_nodes_[static_cast<std::size_t>(t)];
   Eigen::Matrix<double, 4, Eigen::Dynamic> result(4, 4 * static_cast<Eigen::Index>(branch_nodes.size()));
   FrontPolar polar = tip_->fronts.polar(x);
+  // A tet the front crosses is one piece, so no piece side is known there; behind the front a
+  // point takes the side of the closest cut triangle in the tet (Paulus's test, point_side.hpp),
+  // so that on a curved cut F_1 jumps on the cut, not on the frame's half-plane theta = +-pi
+  // (issue 10: the declining-sine front opened to zero 3 mm behind its front without this).
+  if (side == 0 && polar.x_a < 0.0 && tip_->enrichment.front_tet[static_cast<std::size_t>(t)])
+    if (const int e = pieces_.entry[static_cast<std::size_t>(t)]; e >= 0)
+      side = closest_triangle_side(local_cut_surface(pieces_.tets[static_cast<std::size_t>(e)]), x);
   // Behind the front (x_a < 0) theta = +-pi is the cut; where the cut is curved, the frame's
   // half-plane theta = +-pi is not the cut itself, and a point of a piece above the cut can have
   // x_b < 0. Reflecting b there puts F_1's jump on the cut the pieces follow (notes 5.3, "curved
