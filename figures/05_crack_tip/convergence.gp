@@ -1,6 +1,6 @@
 # Chapter 5's convergence study (examples/05_convergence_study.cpp, convergence.csv): Williams's
 # mode-I field on the boundary of the cracked slab. Left: the relative L2 error against the cell
-# size h for no branch functions, topological and geometric (r_e = 0.1 m) enrichment, each also
+# size h for no branch functions, topological and geometric (r_e = 0.1 m) enrichment, the last two also
 # with Fries's blending correction, Tet4 (lines) and Tet10 (open points). Middle: the relative energy error. Right: the geometric
 # radius against cost on n = 9 and 17 (relative L2 error against unknowns).
 set terminal pngcairo size 1650,560 enhanced font "DejaVu Sans,11" linewidth 1.5
