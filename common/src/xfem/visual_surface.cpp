@@ -45,7 +45,12 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
-Eigen::Vector3d row(const Eigen::MatrixX3d& m, Eigen::Index i) { return m.row(i).transpose(); }
+/// Row i of a #rows by 3 matrix as a point. A template, so that the mesh's nodes (row-major) and
+/// the surface's vertices (column-major) are both read in place, never copied.
+template <typename Matrix>
+Eigen::Vector3d row(const Matrix& m, Eigen::Index i) {
+  return m.row(i).transpose();
+}
 
 /// (b - a) x (c - a) . (d - a): six times the signed volume of the tet (a, b, c, d).
 double orientation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {

@@ -51,8 +51,8 @@ class VisualSurface {
 public:
   /// Embeds every vertex of `reference` in `mesh` (Tet4 or Tet10: the corners are used). Inside
   /// the mesh by PointLocator; outside it, the closest of the mesh's boundary faces, found among
-  /// all of them (cost #outside vertices times #boundary faces: 0.x s for the liver, measured in
-  /// the study).
+  /// all of them (cost #outside vertices times #boundary faces: 0.2 s for 5124 outside vertices
+  /// against the 1464 faces of the 10k-tet liver, 07_visual_surface_study).
   /// @param mesh      the tet mesh (kept by reference)
   /// @param reference the visual surface in the reference configuration
   VisualSurface(const TetMesh& mesh, TriangleSurface reference);
