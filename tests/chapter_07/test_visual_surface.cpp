@@ -191,4 +191,22 @@ TEST_CASE("across an opened XFEM cut each vertex takes its side's displacement; 
   CHECK(wrong == 0);
   CHECK(dropped > 0);
   CHECK(kerf::keep_triangles(moved, keep).num_triangles() == static_cast<Eigen::Index>(keep.size()));
+
+  // A sphere of radius 0.52 pokes out of the box's faces by up to 2 cm, also out of cut tets:
+  // xfem_visual_displacement takes the field at the tet's clamped point, on that point's piece.
+  // The clamped point moves a few cm at most, so away from the cut by 5 cm every vertex still
+  // gets its own side's (constant, so exactly extrapolated) displacement.
+  const kerf::TriangleSurface bulging = kerf::implicit_surface_mesh(
+      [&](const Eigen::Vector3d& x) { return (x - centre).norm() - 0.52; }, centre, 0.6, kerf::implicit_surface_sizing(0.05));
+  const kerf::VisualSurface outside(body.mesh, bulging);
+  CHECK(outside.num_outside() > 0);
+  const kerf::TriangleSurface moved_out = outside.deform(kerf::xfem_visual_displacement(body.model, u));
+  double worst_outside = 0.0;
+  for (Eigen::Index v = 0; v < bulging.num_vertices(); ++v) {
+    const Eigen::Vector3d x = row(bulging.vertices, v);
+    CHECK_FALSE(row(moved_out.vertices, v).hasNaN());
+    if (std::abs(x.z() - 0.43) > 0.05) worst_outside = std::max(worst_outside, (row(moved_out.vertices, v) - x - side_value(x)).norm());
+  }
+  MESSAGE("bulging sphere: outside ", outside.num_outside(), " of ", bulging.num_vertices(), ", largest distance ", outside.largest_distance());
+  CHECK(worst_outside < 1e-14);
 }
