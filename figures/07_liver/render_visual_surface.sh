@@ -1,6 +1,7 @@
 #!/bin/sh
 # Draws the liver's visual surface (3 mm triangles, smooth shading with vertex normals) beside the
-# boundary of its 10k-tet mesh (faceted), into visual_surface.png here, and writes the sizes,
+# boundary of its 10k-tet mesh (faceted), into visual_surface.png here, the same surface on the
+# liver cut through by a plane and opened 30 mm (visual_surface_cut.png), and writes the sizes,
 # distances and seconds of the visual surfaces into visual_surface.csv and
 # visual_surface_stdout.txt (07_visual_surface_study; figures/07_liver/visual_surface.md).
 # The picture is drawn off-screen through X, under xvfb-run (apt-get install xvfb; ./kerf.sh
