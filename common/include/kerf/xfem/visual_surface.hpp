@@ -1,0 +1,100 @@
+/// @file visual_surface.hpp
+/// @brief A fine visual surface embedded in the tet mesh and moved by the (XFEM) displacement of the piece each vertex lies in.
+///
+/// Gutierrez section 3.2 and Koschier section 7: the picture does not show the simulation mesh
+/// but a finer surface (implicit_surface_mesh.hpp) whose vertices are tied, once, to the tets
+/// of the reference configuration: vertex v lies in tet t_v at barycentric coordinates
+/// lambda_v, x_v = sum_a lambda_v,a X_a. Each frame moves it by the displacement field there,
+/// x_v + u(t_v, x_v); for XFEM the field of the piece of t_v that holds x_v, so a vertex on
+/// either side of a cut follows its own side.
+///
+/// Vertices outside every tet. The fine surface is smoother than the tets' boundary, whose
+/// triangles are chords of phi = 0: where the boundary is convex the fine surface pokes out
+/// between the tets' corners: on the liver almost every visual vertex (1816 of 1900 at 3000
+/// tets) lies a little outside, by about Mesh_3's facet distance of the tet mesh. Such a vertex
+/// takes the tet of the closest boundary face and its barycentric coordinates in that tet, some
+/// of them negative: the tet's linear field extrapolated a little, which moves it with its tet
+/// exactly in a rigid or linear motion. We record the distance to that face; the tests and
+/// figures/07_liver/visual_surface.md give the largest.
+///
+/// Triangles across a cut. Once a cut opens, a visual triangle whose corners lie on different
+/// sides would stretch across the gap and hide it (and shade it as a wall). The minimal cure,
+/// ours: drop every visual triangle with an edge that crosses the cut in the reference
+/// configuration (untorn_triangles, keep_triangles). The gap then shows the background, or the far inside
+/// of the surface, between ragged edges about one visual triangle wide; the cut faces
+/// themselves are not drawn (Koschier section 7 builds them from the cut surface: an extension).
+#pragma once
+
+#include "kerf/mesh/tet_mesh.hpp"
+#include "kerf/mesh/triangle_surface.hpp"
+#include "kerf/xfem/cut_xfem_model.hpp"
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+namespace kerf {
+
+/// Where a visual vertex is tied to the tet mesh.
+struct VisualVertexEmbedding {
+  int tet = -1;                   ///< t_v, the tet that holds the vertex (or the nearest one)
+  Eigen::Vector4d barycentric;    ///< lambda_v, summing to 1; all >= 0 (up to 1e-10) inside
+  double distance = 0.0;          ///< 0 inside; outside, the distance to t_v's closest boundary face (m)
+};
+
+/// A displacement field the visual surface follows: u(t, X), the displacement (m) at the
+/// reference point X of tet t. For XFEM, xfem_visual_displacement below.
+using VisualDisplacement = std::function<Eigen::Vector3d(int tet, const Eigen::Vector3d& x_reference)>;
+
+/// The fine surface and its embedding in a tet mesh (reference configuration).
+class VisualSurface {
+public:
+  /// Embeds every vertex of `reference` in `mesh` (Tet4 or Tet10: the corners are used). Inside
+  /// the mesh by PointLocator; outside it, the closest of the mesh's boundary faces, found among
+  /// all of them (cost #outside vertices times #boundary faces: 0.2 s for 5124 outside vertices
+  /// against the 1464 faces of the 10k-tet liver, 07_visual_surface_study).
+  /// @param mesh      the tet mesh (kept by reference)
+  /// @param reference the visual surface in the reference configuration
+  VisualSurface(const TetMesh& mesh, TriangleSurface reference);
+
+  /// The surface in the reference configuration.
+  const TriangleSurface& reference() const { return reference_; }
+  /// One embedding per vertex.
+  const std::vector<VisualVertexEmbedding>& embedding() const { return embedding_; }
+  /// sum_a lambda_v,a X_a: vertex v's position rebuilt from its tet's corners (m).
+  Eigen::Vector3d embedded_position(Eigen::Index v) const;
+  /// The number of vertices outside every tet.
+  Eigen::Index num_outside() const;
+  /// The largest distance of an outside vertex to its tet (m; 0 if none is outside).
+  double largest_distance() const;
+
+  /// The surface moved: vertex v at x_v + u(t_v, x_v), the triangles unchanged.
+  TriangleSurface deform(const VisualDisplacement& u) const;
+
+private:
+  const TetMesh& mesh_;
+  TriangleSurface reference_;
+  std::vector<VisualVertexEmbedding> embedding_;
+};
+
+/// The triangles of `visual` (reference configuration) of which no edge crosses a triangle of
+/// `cut`: the triangles that would stretch across the opened cut are the others. A crossing is an
+/// edge whose ends lie strictly on opposite sides of a cut triangle's plane and passes through it
+/// (its edges included).
+/// @return the indices of the triangles kept, increasing
+std::vector<int> untorn_triangles(const TriangleSurface& visual, const TriangleSurface& cut);
+
+/// `surface` with only the triangles `keep` (same vertices): for a moved visual surface and
+/// untorn_triangles of its reference.
+TriangleSurface keep_triangles(const TriangleSurface& surface, const std::vector<int>& keep);
+
+/// The XFEM field as the visual surface asks for it: model.displacement_at(u, t, X), the field of
+/// the piece of t that holds X. A vertex just outside a cut tet lies in none of its pieces; it
+/// takes the field at the nearest point of the tet in barycentric terms (the coordinates clamped
+/// at 0 and rescaled to sum 1), on that point's piece. In a tet integrated whole the tet's field
+/// is extrapolated, as VisualSurface does.
+/// @param model the model (kept by reference)
+/// @param u     its unknowns (kept by reference)
+VisualDisplacement xfem_visual_displacement(const CutXfemModel& model, const Eigen::VectorXd& u);
+
+} // namespace kerf
