@@ -35,6 +35,22 @@ kerf::TriangleSurface disc() {
   return s;
 }
 
+// The beam held at z = 0 under its weight with gravity along +x, which opens the side x = 0 of
+// the bending (the study's load).
+Eigen::VectorXd hanging_under_gravity(const kerf::CrackTipBody& body, const kerf::LinearMaterial& material) {
+  kerf::NodeRegion base;
+  base.box_max = {0.03, 0.06, 0.0};
+  const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(body.model(), {{kerf::nodes_in_region(body.model().mesh(), base), {0, 0, 0}}});
+  return kerf::solve_linear_cut_xfem(body.model(), dofs, body.model().gravity_load(material.density, {9.81, 0, 0}), kerf::SolverSettings{});
+}
+
+// The field at a point of the beam, on the piece that holds it.
+Eigen::Vector3d displacement(const kerf::CrackTipBody& body, const kerf::PointLocator& locator, const Eigen::VectorXd& u, const Eigen::Vector3d& x) {
+  const kerf::PointLocation where = locator.locate(x);
+  REQUIRE(where.tet >= 0);
+  return body.model().displacement_at(u, where.tet, x);
+}
+
 } // namespace
 
 TEST_CASE("a half-disc cut: its front is the half circle, and the cut opens behind it and not ahead") {
@@ -59,22 +75,13 @@ TEST_CASE("a half-disc cut: its front is the half circle, and the cut opens behi
   REQUIRE(body.branch() != nullptr);
   CHECK(body.branch()->num_branch_nodes() > 0);
 
-  // Gravity along +x opens the side x = 0 of the beam's bending.
-  kerf::NodeRegion base;
-  base.box_max = {0.03, 0.06, 0.0};
-  const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(body.model(), {{kerf::nodes_in_region(mesh, base), {0, 0, 0}}});
-  const Eigen::VectorXd u =
-      kerf::solve_linear_cut_xfem(body.model(), dofs, body.model().gravity_load(material.density, {9.81, 0, 0}), kerf::SolverSettings{});
+  const Eigen::VectorXd u = hanging_under_gravity(body, material);
   REQUIRE(u.allFinite());
 
   // The opening [u] = u(z + d) - u(z - d), d = 1e-7 m, along y = 0.03 behind and ahead of the
   // front (which crosses that line at x = R cos(pi / rim)).
   const kerf::PointLocator locator(mesh);
-  const auto at = [&](const Eigen::Vector3d& x) {
-    const kerf::PointLocation where = locator.locate(x);
-    REQUIRE(where.tet >= 0);
-    return body.model().displacement_at(u, where.tet, x);
-  };
+  const auto at = [&](const Eigen::Vector3d& x) { return displacement(body, locator, u, x); };
   const Eigen::Vector3d d(0, 0, 1e-7);
   const auto opening = [&](double x) {
     const Eigen::Vector3d p(x, 0.03, plane_z);
@@ -108,18 +115,10 @@ TEST_CASE("a curved cut whose front tets see it off the frame's half-plane: the 
   const kerf::CrackTipBody body(mesh, {sheet}, material, kerf::TipTreatment::geometric, 0.0,
                                 kerf::BranchRules{kerf::FrontRule::refined_subtets, 2, 3, 0});
   REQUIRE(body.fronts().polylines.size() == 1);
-  kerf::NodeRegion base;
-  base.box_max = {0.03, 0.06, 0.0};
-  const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(body.model(), {{kerf::nodes_in_region(mesh, base), {0, 0, 0}}});
-  const Eigen::VectorXd u =
-      kerf::solve_linear_cut_xfem(body.model(), dofs, body.model().gravity_load(material.density, {9.81, 0, 0}), kerf::SolverSettings{});
+  const Eigen::VectorXd u = hanging_under_gravity(body, material);
   REQUIRE(u.allFinite());
   const kerf::PointLocator locator(mesh);
-  const auto at = [&](const Eigen::Vector3d& x) {
-    const kerf::PointLocation where = locator.locate(x);
-    REQUIRE(where.tet >= 0);
-    return body.model().displacement_at(u, where.tet, x);
-  };
+  const auto at = [&](const Eigen::Vector3d& x) { return displacement(body, locator, u, x); };
   // The opening across the cut at distance s behind the front along y = 0.015, d = 1e-7 m off
   // the cut along its normal (-dh/dx, -dh/dy, 1). The sheet's vertices lie on the lines
   // x = -0.01 + i mm, y = -0.01 + j mm, so along y = 0.015 and at whole millimetres of x the
