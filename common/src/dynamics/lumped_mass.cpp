@@ -22,21 +22,14 @@ Eigen::VectorXd piece_diagonal(const Eigen::MatrixXd& m, double density, Lumping
   throw std::logic_error("piece_diagonal: eqs. 81-82 are not lumped piece by piece");
 }
 
-// Whether slot s of tet t holds a branch function (its DOF node comes after the u's and a's).
-bool branch_slot(const CutXfemModel& model, Eigen::Index t, Eigen::Index s) {
-  return model.assembly_slots()(t, s) >= model.mesh().num_nodes() + model.enrichment().num_enrichments();
-}
-
-// The branch rows and columns of tet t's consistent mass (cut_xfem_slot_mass), added through
-// add(i, j, value) on DOF nodes: the branch block and its coupling to the phantom unknowns,
-// not lumped (lumped_mass.hpp says why).
+// Tet t's consistent slot mass (cut_xfem_slot_mass), scattered whole through add(i, j, value)
+// on DOF nodes: a tet with branch functions is not lumped (lumped_mass.hpp says why).
 template <typename Add>
-void add_branch_rows(const CutXfemModel& model, Eigen::Index t, double density, const Add& add) {
+void add_consistent_tet(const CutXfemModel& model, Eigen::Index t, double density, const Add& add) {
   const Eigen::MatrixXd m = cut_xfem_slot_mass(model, t, density);
   const TetMatrix& slots = model.assembly_slots();
   for (Eigen::Index r = 0; r < m.rows(); ++r)
-    for (Eigen::Index s = 0; s < m.cols(); ++s)
-      if (branch_slot(model, t, r) || branch_slot(model, t, s)) add(slots(t, r), slots(t, s), m(r, s));
+    for (Eigen::Index s = 0; s < m.cols(); ++s) add(slots(t, r), slots(t, s), m(r, s));
 }
 
 } // namespace
@@ -51,8 +44,11 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
   };
   if (scheme == LumpingScheme::schoch_eq_81_82) require_no_crack_tip_functions(model, "lump_cut_xfem_mass");
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    if (model.has_branch_functions(t)) {
+      add_consistent_tet(model, t, density, add);
+      continue;
+    }
     const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, 1.0, rule);
-    if (model.has_branch_functions(t)) add_branch_rows(model, t, density, add);
     if (scheme == LumpingScheme::schoch_eq_81_82) {
       double element_volume = 0.0;
       for (const Eigen::MatrixXd& m : masses) element_volume += m.sum();
@@ -96,14 +92,17 @@ Eigen::VectorXd lumped_gravity_load(const CutXfemModel& model, double density, c
   }
   const TetMesh& mesh = model.mesh();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
-  // The branch rows: rho int phi_j g, the consistent ones (CutXfemModel::gravity_load; with the
-  // branch block and its coupling kept consistent, M_lumped times "every phantom node at g").
-  const Eigen::Index first_branch_row = 3 * (mesh.num_nodes() + model.enrichment().num_enrichments());
-  if (model.num_branch_nodes() > 0) {
-    const Eigen::VectorXd consistent = model.gravity_load(density, g);
-    f.tail(f.size() - first_branch_row) = consistent.tail(f.size() - first_branch_row);
-  }
+  const int n = mesh.nodes_per_tet();
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    if (model.has_branch_functions(t)) {
+      // Its consistent mass times "every phantom node at g": slot s gets sum_a m_sa g over the
+      // node slots (the sign and branch slots' accelerations are 0), which is rho int g_s g,
+      // the tet's share of CutXfemModel::gravity_load, branch rows included.
+      const Eigen::MatrixXd m = cut_xfem_slot_mass(model, t, density);
+      for (Eigen::Index s = 0; s < m.rows(); ++s)
+        f.segment<3>(3 * model.assembly_slots()(t, s)) += m.row(s).head(n).sum() * g;
+      continue;
+    }
     const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, 1.0, rule);
     for (std::size_t p = 0; p < masses.size(); ++p) {
       const Eigen::VectorXd D = piece_diagonal(masses[p], density, scheme);
