@@ -212,6 +212,9 @@ void CutDynamics::setup_system() {
   const std::size_t free_pieces = kerf::cut_xfem_unheld_pieces(*model_, dofs_).size();
   report("system: " + std::to_string(dofs_.num_free) + " unknowns (" + std::to_string(3 * enrichment().num_enrichments()) +
          " of them enriched); " + std::to_string(free_pieces) + " pieces held by no clamp");
+  if (model_->num_branch_nodes() > 0 && scene_.time.mass == "schoch_eq_81_82")
+    throw kerf::InputError(scene_.source.string(), "time.mass",
+                           "eqs. 81-82 give the crack-tip functions no mass: use \"lumped\" or \"consistent\" with a crack_tip field");
   M_ = kerf::scene_cut_xfem_mass(scene_, *model_, rule_);
   // The body's mass as the mass matrix sees it: e^T M e for e a unit translation of the nodes
   // along x (the enriched DOFs at 0), rho V for every scheme of lumped_mass.hpp.

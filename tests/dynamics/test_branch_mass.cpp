@@ -311,4 +311,18 @@ TEST_CASE("chapter 6's program steps a beam with a partial cut and crack-tip fun
     CHECK(largest > 0.0);
     CHECK(drift <= 1e-9 * largest);
   }
+  // Eqs. 81-82 have no branch rows: the program refuses them in one line naming the field.
+  const auto dir = kerf_test::fresh_dir("dynamics_crack_tip_schoch");
+  kerf_test::write_text(dir / "scene.json", R"({
+  "mesh": {"box": {"min": [0, 0, 0], "max": [0.03, 0.06, 0.2], "cells": [3, 3, 9]}, "order": 1},
+  "material": {"young": 300e3, "poisson": 0.35, "density": 1070},
+  "dirichlet": [{"region": {"box": {"min": [0, 0, 0], "max": [0.03, 0.06, 0]}}, "displacement": [0, 0, 0]}],
+  "cuts": [{"rectangle": {"origin": [0, 0, 0.1], "edge1": [0.015, 0, 0], "edge2": [0, 0.06, 0]}}],
+  "crack_tip": {"enrichment": "branch", "radius": 0},
+  "time": {"integrator": "newmark", "dt": 0.005, "steps": 2, "mass": "schoch_eq_81_82"}
+})");
+  const auto refused = kerf_test::run_program(program + " --quiet --scene '" + (dir / "scene.json").string() + "' --out '" + (dir / "out").string() + "'", dir);
+  CHECK(refused.exit_status != 0);
+  CHECK(refused.err.find("time.mass") != std::string::npos);
+  CHECK(refused.err.find("crack-tip") != std::string::npos);
 }
