@@ -49,9 +49,9 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
 /// order: its split pieces (each with `rule` of degree 2 order), or the whole tet as one
 /// (chapter 1's element mass). What assemble_cut_xfem_mass() scatters, and what the lumped
 /// masses of chapter 6 (dynamics/lumped_mass.hpp) lump piece by piece. In a tet with branch
-/// functions: the phantom block of each of the model's pieces, over its front or blending rule
-/// (for_each_slot_value; `rule` is not used there), so that the phantom masses lumped and
-/// consistent come from the same points.
+/// functions: the phantom block of each of the model's pieces over its front or blending rule
+/// (for_each_slot_value; `rule` is not used there), the points cut_xfem_slot_mass() sums over
+/// (the lumped masses do not lump such a tet: lumped_mass.hpp).
 std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Eigen::Index t, double density,
                                                    const PieceRuleFunction& rule);
 
