@@ -50,6 +50,7 @@
 #include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/scene/scene.hpp"
+#include "kerf/scene/scene_crack_tip.hpp"
 #include "kerf/scene/scene_cuts.hpp"
 #include "kerf/scene/scene_dynamic_mass.hpp"
 #include "kerf/scene/scene_mesh.hpp"
@@ -114,6 +115,9 @@ private:
   void check_state(int step) const;
   void output_step(int step);
   void output_results() const;
+  // The sign enrichment the model takes: chapter 5's classification's with a "crack_tip" field
+  // (the model checks that it is the one its branch functions were built with), chapter 4's without.
+  const kerf::SurfaceEnrichment& enrichment() const { return crack_tip_ ? crack_tip_->sign_enrichment() : enrichment_; }
   void report(const std::string& line) const {
     if (!options_.quiet) std::cout << line << '\n';
   }
@@ -125,6 +129,7 @@ private:
   std::unique_ptr<kerf::CutSurfaces> cuts_;
   kerf::MeshPieces pieces_;
   kerf::SurfaceEnrichment enrichment_;
+  std::unique_ptr<kerf::SceneCrackTip> crack_tip_; // chapter 5's functions, if the scene asks: the model refers to them
   kerf::PieceRuleFunction rule_;
   std::unique_ptr<kerf::CutXfemModel> model_;
   kerf::DofMap dofs_;
@@ -162,14 +167,23 @@ void CutDynamics::make_mesh() {
 
 // @sect4{CutDynamics::apply_cut}
 //
-// As in chapter 4: the surfaces, the pieces of every tet they cut, and the enrichment.
+// As in chapter 4: the surfaces, the pieces of every tet they cut, and the enrichment; with a
+// "crack_tip" field, chapter 5's (scene_crack_tip.hpp): the sign enrichment of its node
+// classification and the branch functions where a cut ends inside the body. Without the field
+// chapter 4's enrichment, as before chapter 5 (chapter 5's default would be the branch
+// functions).
 void CutDynamics::apply_cut() {
   cuts_ = std::make_unique<kerf::CutSurfaces>(kerf::scene_cut_surfaces(scene_, &std::cerr));
   pieces_ = kerf::scene_mesh_pieces(scene_, mesh_, *cuts_, &std::cerr);
-  enrichment_ = kerf::make_surface_enrichment(mesh_, pieces_);
+  if (scene_.crack_tip.given) {
+    crack_tip_ = std::make_unique<kerf::SceneCrackTip>(scene_, mesh_, pieces_, *cuts_, &std::cerr);
+    report("crack tip: " + std::to_string(crack_tip_->num_branch_nodes()) + " branch nodes");
+  } else {
+    enrichment_ = kerf::make_surface_enrichment(mesh_, pieces_);
+  }
   report("cut: " + std::to_string(pieces_.count(kerf::SurfaceCutState::completely_cut)) + " tets completely cut, " +
          std::to_string(pieces_.count(kerf::SurfaceCutState::partially_cut)) + " partially cut; " +
-         std::to_string(enrichment_.num_enrichments()) + " enrichments");
+         std::to_string(enrichment().num_enrichments()) + " enrichments");
 }
 
 // @sect4{CutDynamics::setup_system}
@@ -183,9 +197,12 @@ void CutDynamics::apply_cut() {
 // 76-80, or a lumped one, by default the per-piece "virtual tet" lumping that the notes (6.2)
 // derive as the cure of eqs. 81-82, with the loads that go with it: with eqs. 81-82 a freed
 // piece moves with the inertia of its whole element, with the per-piece lumping it falls at g.
+// Crack-tip functions get their rows of the mass and of the body force (lumped_mass.hpp: the
+// branch rows are the consistent ones).
 void CutDynamics::setup_system() {
   rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
-  model_ = std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, pieces_, enrichment_, rule_);
+  model_ = std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, pieces_, enrichment(), rule_,
+                                                crack_tip_ ? crack_tip_->tip_functions() : nullptr);
   if (options_.moments_out) {
     kerf::write_piece_moments_csv(*options_.moments_out, mesh_, pieces_, rule_);
     report("wrote " + options_.moments_out->string());
@@ -193,8 +210,11 @@ void CutDynamics::setup_system() {
   dofs_ = kerf::make_cut_xfem_dof_map(*model_, kerf::scene_held_nodes(scene_, mesh_, &std::cerr));
   if (dofs_.num_free == 0) throw kerf::InputError(scene_.source.string(), "dirichlet", "every DOF is prescribed: nothing to solve");
   const std::size_t free_pieces = kerf::cut_xfem_unheld_pieces(*model_, dofs_).size();
-  report("system: " + std::to_string(dofs_.num_free) + " unknowns (" + std::to_string(3 * enrichment_.num_enrichments()) +
+  report("system: " + std::to_string(dofs_.num_free) + " unknowns (" + std::to_string(3 * enrichment().num_enrichments()) +
          " of them enriched); " + std::to_string(free_pieces) + " pieces held by no clamp");
+  if (model_->num_branch_nodes() > 0 && scene_.time.mass == "schoch_eq_81_82")
+    throw kerf::InputError(scene_.source.string(), "time.mass",
+                           "eqs. 81-82 give the crack-tip functions no mass: use \"lumped\" or \"consistent\" with a crack_tip field");
   M_ = kerf::scene_cut_xfem_mass(scene_, *model_, rule_);
   // The body's mass as the mass matrix sees it: e^T M e for e a unit translation of the nodes
   // along x (the enriched DOFs at 0), rho V for every scheme of lumped_mass.hpp.
@@ -505,7 +525,7 @@ int main(int argc, char** argv) {
       [](const kerf::CommandLine& options) {
         const kerf::Scene scene = options.scene ? kerf::read_scene_file(*options.scene)
                                                 : kerf::parse_scene(chapter06::demo_scene, "demo scene", ".");
-        kerf::require_features(scene, kerf::SceneFeatures{.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true});
+        kerf::require_features(scene, kerf::SceneFeatures{.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true, .crack_tip = true});
         if (scene.time.integrator == "static")
           throw kerf::InputError(scene.source.string(), "time.integrator",
                                  "\"static\" (or no \"time\" field) is the solve of chapters 1-5 (04_cut_quadrature); 06_newmark "

@@ -22,6 +22,16 @@ Eigen::VectorXd piece_diagonal(const Eigen::MatrixXd& m, double density, Lumping
   throw std::logic_error("piece_diagonal: eqs. 81-82 are not lumped piece by piece");
 }
 
+// Tet t's consistent slot mass (cut_xfem_slot_mass), scattered whole through add(i, j, value)
+// on DOF nodes: a tet with branch functions is not lumped (lumped_mass.hpp says why).
+template <typename Add>
+void add_consistent_tet(const CutXfemModel& model, Eigen::Index t, double density, const Add& add) {
+  const Eigen::MatrixXd m = cut_xfem_slot_mass(model, t, density);
+  const TetMatrix& slots = model.assembly_slots();
+  for (Eigen::Index r = 0; r < m.rows(); ++r)
+    for (Eigen::Index s = 0; s < m.cols(); ++s) add(slots(t, r), slots(t, s), m(r, s));
+}
+
 } // namespace
 
 Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
@@ -32,7 +42,12 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
   const auto add = [&](int i, int j, double value) {
     for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, value);
   };
+  if (scheme == LumpingScheme::schoch_eq_81_82) require_no_crack_tip_functions(model, "lump_cut_xfem_mass");
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    if (model.has_branch_functions(t)) {
+      add_consistent_tet(model, t, density, add);
+      continue;
+    }
     const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, 1.0, rule);
     if (scheme == LumpingScheme::schoch_eq_81_82) {
       double element_volume = 0.0;
@@ -71,11 +86,23 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
 
 Eigen::VectorXd lumped_gravity_load(const CutXfemModel& model, double density, const Eigen::Vector3d& g,
                                     LumpingScheme scheme, const PieceRuleFunction& rule) {
-  require_no_crack_tip_functions(model, "lumped_gravity_load");
-  if (scheme == LumpingScheme::schoch_eq_81_82) return model.gravity_load(density, g);
+  if (scheme == LumpingScheme::schoch_eq_81_82) {
+    require_no_crack_tip_functions(model, "lumped_gravity_load");
+    return model.gravity_load(density, g);
+  }
   const TetMesh& mesh = model.mesh();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
+  const int n = mesh.nodes_per_tet();
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    if (model.has_branch_functions(t)) {
+      // Its consistent mass times "every phantom node at g": slot s gets sum_a m_sa g over the
+      // node slots (the sign and branch slots' accelerations are 0), which is rho int g_s g,
+      // the tet's share of CutXfemModel::gravity_load, branch rows included.
+      const Eigen::MatrixXd m = cut_xfem_slot_mass(model, t, density);
+      for (Eigen::Index s = 0; s < m.rows(); ++s)
+        f.segment<3>(3 * model.assembly_slots()(t, s)) += m.row(s).head(n).sum() * g;
+      continue;
+    }
     const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, 1.0, rule);
     for (std::size_t p = 0; p < masses.size(); ++p) {
       const Eigen::VectorXd D = piece_diagonal(masses[p], density, scheme);

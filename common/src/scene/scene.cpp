@@ -547,9 +547,7 @@ void require_features(const Scene& scene, const SceneFeatures& taught) {
         throw InputError(file, "cuts[" + std::to_string(i) + "].surface",
                          "triangle-mesh cuts are taught from chapter 4 on (04_cut_quadrature)");
   if (scene.crack_tip.given && !taught.crack_tip)
-    throw InputError(file, "crack_tip",
-                     taught.dynamics ? "crack-tip enrichment is static only (05_crack_tip): chapter 6's mass has no rows for it"
-                                     : "crack-tip enrichment is taught from chapter 5 on (05_crack_tip)");
+    throw InputError(file, "crack_tip", "crack-tip enrichment is taught from chapter 5 on (05_crack_tip)");
   if (scene.time.integrator != "static" && !taught.dynamics)
     throw InputError(file, "time.integrator", "\"" + scene.time.integrator + "\" is taught from chapter 6 on (06_newmark)");
 }

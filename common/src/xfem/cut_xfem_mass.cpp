@@ -10,15 +10,33 @@ namespace kerf {
 
 void require_no_crack_tip_functions(const CutXfemModel& model, const char* who) {
   if (model.num_branch_nodes() > 0)
-    throw std::invalid_argument(std::string(who) + ": the mass has no rows for crack-tip functions (chapter 5 is static)");
+    throw std::invalid_argument(std::string(who) + ": eqs. 81-82 give the crack-tip functions no mass (use a per-piece lumping or the consistent mass)");
+}
+
+Eigen::MatrixXd cut_xfem_slot_mass(const CutXfemModel& model, Eigen::Index t, double density) {
+  Eigen::MatrixXd m;
+  model.for_each_slot_value(t, [&](int, double weight, const Eigen::VectorXd& g) {
+    if (m.size() == 0) m = Eigen::MatrixXd::Zero(g.size(), g.size());
+    m.noalias() += density * weight * g * g.transpose();
+  });
+  return m;
 }
 
 std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Eigen::Index t, double density,
                                                    const PieceRuleFunction& rule) {
-  require_no_crack_tip_functions(model, "cut_xfem_piece_masses");
   const TetMesh& mesh = model.mesh();
   const MeshPieces& pieces = model.pieces();
   const int n = mesh.nodes_per_tet();
+  if (model.has_branch_functions(t)) {
+    // The phantom block of each piece, at the points of the tet's own rule: node a's value N_a
+    // is slot a's (the first n of g).
+    std::vector<Eigen::MatrixXd> masses;
+    model.for_each_slot_value(t, [&](int p, double weight, const Eigen::VectorXd& g) {
+      if (static_cast<std::size_t>(p) == masses.size()) masses.push_back(Eigen::MatrixXd::Zero(n, n));
+      masses[static_cast<std::size_t>(p)].noalias() += density * weight * g.head(n) * g.head(n).transpose();
+    });
+    return masses;
+  }
   if (!model.split(t) || pieces.num_pieces(t) == 1) {
     // The whole tet, possibly with enrichments that are 1 all over it.
     if (n == 4) return {tet4_mass(tet_corners(mesh, t), density)};
@@ -43,7 +61,6 @@ std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Ei
 }
 
 Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const PieceRuleFunction& rule) {
-  require_no_crack_tip_functions(model, "assemble_cut_xfem_mass");
   const TetMesh& mesh = model.mesh();
   const int n = mesh.nodes_per_tet();
   std::vector<Eigen::Triplet<double>> entries;
@@ -62,7 +79,18 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
           for (const int j : dof_nodes(b))
             for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, m(a, b));
   };
+  const TetMatrix& slots = model.assembly_slots();
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    if (model.has_branch_functions(t)) {
+      // The tet's slots carry the phantom element's unknowns and the branch functions' alike:
+      // m_e scattered slot by slot is the sum over its pieces of T_p^T m_p T_p, plus the branch
+      // rows and columns.
+      const Eigen::MatrixXd m = cut_xfem_slot_mass(model, t, density);
+      for (Eigen::Index r = 0; r < m.rows(); ++r)
+        for (Eigen::Index s = 0; s < m.cols(); ++s)
+          for (int c = 0; c < 3; ++c) entries.emplace_back(3 * slots(t, r) + c, 3 * slots(t, s) + c, m(r, s));
+      continue;
+    }
     const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, density, rule);
     for (std::size_t p = 0; p < masses.size(); ++p) add(t, static_cast<int>(p), masses[p]);
   }

@@ -455,6 +455,27 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
   if (assembler) assembler->add_element_matrix(t, K_e, *rhs_free);
 }
 
+void CutXfemModel::for_each_slot_value(Eigen::Index t, const std::function<void(int, double, const Eigen::VectorXd&)>& visit) const {
+  const int n = mesh_.nodes_per_tet();
+  const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
+  const std::span<const Piece> integrated = integrated_pieces(t);
+  Eigen::VectorXd g(num_slots(t));
+  for (std::size_t p = 0; p < integrated.size(); ++p) {
+    const Piece& piece = integrated[p];
+    for (std::size_t q = 0; q < piece.points.size(); ++q) {
+      const Point& point = piece.points[q];
+      g.setZero();
+      for (int a = 0; a < n; ++a) {
+        g[a] += point.N[a];
+        if (const int s = piece.enrichment_slot[static_cast<std::size_t>(a)]; s >= 0) g[s] += point.N[a];
+      }
+      for (Eigen::Index j = 0; j < piece.branch_value.cols(); ++j)
+        g[first_branch + j] = piece.branch_value(static_cast<Eigen::Index>(q), j);
+      visit(static_cast<int>(p), point.weight, g);
+    }
+  }
+}
+
 int CutXfemModel::num_slots(Eigen::Index t) const {
   int slots = mesh_.nodes_per_tet();
   while (slots < slots_.cols() && slots_(t, slots) >= 0) ++slots;

@@ -27,6 +27,28 @@ namespace kerf {
 /// is (1/2) (sum_a D_p,aa) |t|^2 = (1/2) rho V_p |t|^2 for all three.
 ///
 /// The fourth, eqs. 81-82 as printed, is diagonal in [u; a] and drops that coupling.
+///
+/// Crack-tip functions (chapter 5). A tet with branch functions is not lumped: it keeps its
+/// consistent mass (cut_xfem_mass.hpp: rho sum_q w_q g_q g_q^T over its front or blending rule),
+/// branch rows and columns and their coupling to the phantom unknowns included; every other tet
+/// is lumped as above. Why:
+/// - the branch functions are no partition of unity: no row sum or "total mass" of theirs means
+///   anything to scale a diagonal by;
+/// - the coupling rho int phi_j N_a is what keeps free fall exact with the branch rows of the
+///   body force that statics uses (rho int phi_j g, notes 5.4): "every phantom node at g,
+///   b'' = 0" then solves M_lumped a = f in the branch rows too (sum_a N_a = 1); a diagonal
+///   branch block without it would accelerate a falling body's branch DOFs at
+///   (rho int phi_j g) / (rho int phi_j^2);
+/// - lumping only the phantom part beside a consistent branch block is not positive definite on
+///   Tet10: the lumped phantom masses need not dominate the consistent ones, and the Schur
+///   complement of the branch block goes negative (measured on the slab of
+///   tests/dynamics/test_branch_mass.cpp: smallest eigenvalue -0.023 (hrz) and -0.033
+///   (virtual_tet) of the largest; positive on Tet4). A sum of consistent element masses and
+///   lumped ones is positive semi-definite whatever the order.
+/// The body's mass, a rigid translation's kinetic energy (b = 0) and every piece's mass stay exact
+/// (both parts are); the matrix is still the factorised one of chapter 6's integrators (it was
+/// not diagonal in [u; a] before either). Eqs. 81-82 have no branch rows: they refuse a model
+/// with crack-tip functions.
 enum class LumpingScheme {
   /// D_p,aa = rho int_p N_a: the rows of the piece's consistent mass summed. The piece's mass
   /// and first moment are exact (sum_a N_a = 1, sum_a N_a x_a = x), so its centre of mass is
@@ -61,6 +83,8 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
 /// For the three piece-wise schemes it is the lumped one, sum_p T_p^T (D_p 1 kron g): each
 /// phantom node pulled by its own mass, so that M_lumped a = f has the solution "every phantom
 /// node accelerates at g" (u'' = g, a'' = 0), exactly, however the body is cut.
+/// In a tet with branch functions it is the consistent one, rho int g_s g on every slot
+/// (CutXfemModel::gravity_load's share), which is the same rule: that tet's mass times "u'' = g".
 /// For schoch_eq_81_82 it is Paper 000's consistent body load (eq. 19, sum_p T_p^T int_p N^T rho g,
 /// CutXfemModel::gravity_load). With eqs. 81-82, on a single cut Tet4, it accelerates u at g but
 /// an enrichment k at 4 g mean_p(N_a) (the mean of its node's shape function N_a over the piece p

@@ -9,17 +9,35 @@
 
 namespace kerf {
 
-/// Throws std::invalid_argument naming `who` if `model` has crack-tip functions: the masses of
-/// this file and of dynamics/lumped_mass.hpp are the phantom elements', with no rows for the
-/// branch DOFs (rho int N_a F_l N_b F_m would need the front rules of the stiffness), so chapter
-/// 6's dynamics refuses chapter 5's functions rather than give them no inertia.
+/// Throws std::invalid_argument naming `who` if `model` has crack-tip functions. Since the masses
+/// have rows for the branch DOFs (below), only eqs. 81-82 of dynamics/lumped_mass.hpp call it:
+/// Paper 000 gives them no branch rows.
 void require_no_crack_tip_functions(const CutXfemModel& model, const char* who);
+
+/// The scalar consistent mass of tet t on its slots (row t of model.assembly_slots()), S x S:
+///
+///   m_e = rho sum_q w_q g_q g_q^T,
+///
+/// g_q the value at point q of every slot's function (CutXfemModel::for_each_slot_value: the
+/// phantom element's N_a on the node and sign slots, the branch functions N_v (F_l - F_l(x_v))
+/// on the branch slots), over the points the model integrates the tet's stiffness at. For a tet
+/// with branch functions these are its front or blending rules (chapter 5): the branch
+/// functions are bounded (|F_l| <= sqrt(r)), so the products are bounded where the stiffness's
+/// gradients are singular, and those rules serve them, with the stiffness's and the body
+/// force's points (so that free fall stays exact). Measured on the phantom block against an
+/// exact rule (tests/dynamics/test_branch_mass.cpp): the blending tets' graded Gauss rules are
+/// exact (1e-14); the front tets' collapsed sub-tets, exact in r but not for polynomials, are off
+/// by 7.7e-4 of the element mass on Tet4 (4 points per direction, the default) and 2.2e-5 on Tet10
+/// (6), and exact with 8 (CrackTipFunctions::front_points). The weights sum to the volumes: the
+/// body's mass and a translation's kinetic energy are exact whatever the points.
+Eigen::MatrixXd cut_xfem_slot_mass(const CutXfemModel& model, Eigen::Index t, double density);
 
 /// The consistent mass on all 3 num_dof_nodes() DOFs, no Dirichlet elimination:
 ///
 ///   M_e = sum_p T_p^T (rho int_p N^T N dV, times I_3) T_p,
 ///
-/// the phantom elements' masses over their pieces (eqs. 77-80 with Psi in {0, 1} on each piece).
+/// the phantom elements' masses over their pieces (eqs. 77-80 with Psi in {0, 1} on each piece);
+/// a tet with branch functions adds their rows and columns, cut_xfem_slot_mass() scattered.
 /// N_a N_b has degree 2 on a Tet4 piece and 4 on a Tet10 piece (notes 4.4): `rule` is asked for
 /// that degree on every piece of a split tet, and must be exact for it (the "exact" and
 /// "subtets" rules are; volume ratios are not, even for a Tet4; Koschier's "moment_fitting" is
@@ -30,7 +48,10 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
 /// The scalar masses rho int_p N_a N_b dV (n x n) of every piece tet t integrates, in piece
 /// order: its split pieces (each with `rule` of degree 2 order), or the whole tet as one
 /// (chapter 1's element mass). What assemble_cut_xfem_mass() scatters, and what the lumped
-/// masses of chapter 6 (dynamics/lumped_mass.hpp) lump piece by piece.
+/// masses of chapter 6 (dynamics/lumped_mass.hpp) lump piece by piece. In a tet with branch
+/// functions: the phantom block of each of the model's pieces over its front or blending rule
+/// (for_each_slot_value; `rule` is not used there), the points cut_xfem_slot_mass() sums over
+/// (the lumped masses do not lump such a tet: lumped_mass.hpp).
 std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Eigen::Index t, double density,
                                                    const PieceRuleFunction& rule);
 

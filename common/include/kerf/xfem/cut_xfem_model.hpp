@@ -145,6 +145,15 @@ public:
   /// The same for a point known to lie on side `side` (+1 above, -1 below, 0 not known) of the
   /// cut, which may lie on the cut itself: F_1 then takes that side's value (theta = side pi).
   std::vector<std::pair<int, double>> branch_values_on_side(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
+  /// Every quadrature point tet t is integrated at, with the value there of each of its slots'
+  /// functions: visit(p, w, g) for each point of each piece p that tet t integrates (one piece
+  /// for a tet integrated whole), w its weight (m^3), g one value per slot (the slots of row t of
+  /// assembly_slots()): N_a on node a's slot and on the slot of the sign enrichment active on p
+  /// (the phantom element's), and the branch functions N_v (F_l - F_l(x_v)) on the branch slots.
+  /// The field at the point is sum_s g_s q_s. In a tet with branch functions these are the
+  /// points of its front or blending rule, the stiffness's; what chapter 6's mass integrates
+  /// there (cut_xfem_mass.hpp: rho sum_q w_q g_q g_q^T).
+  void for_each_slot_value(Eigen::Index t, const std::function<void(int, double, const Eigen::VectorXd&)>& visit) const;
   /// Whether tet t holds a branch-enriched node (its field has the branch functions).
   bool has_branch_functions(Eigen::Index t) const { return first_branch_slot_[static_cast<std::size_t>(t)] >= 0; }
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
