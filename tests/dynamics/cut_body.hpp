@@ -5,6 +5,8 @@
 #include "support/cut_body.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
+#include "kerf/dynamics/linear_dynamic_system.hpp"
+#include "kerf/dynamics/newmark.hpp"
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/quadrature/gauss_piece_rules.hpp"
@@ -76,14 +78,25 @@ struct CutBody : support::CutBody {
   }
 
   // The full linear stiffness K^X on all 3 num_dof_nodes() DOFs.
-  Eigen::SparseMatrix<double> stiffness() const {
-    const kerf::DofMap all_free = kerf::make_dof_map(model.num_dof_nodes(), {});
-    kerf::SparseAssembler assembler(model.assembly_slots(), all_free);
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(all_free.num_free);
-    model.assemble_linear_stiffness(assembler, rhs);
-    return assembler.matrix();
-  }
+  Eigen::SparseMatrix<double> stiffness() const { return support::full_linear_stiffness(model); }
 };
+
+// Undamped Newmark (the average acceleration rule) from rest under the constant load f on all
+// DOFs: the state after `steps` steps of dt (the free-fall tests).
+inline kerf::DynamicState newmark_from_rest(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> K, kerf::DofMap dofs,
+                                            const Eigen::VectorXd& f, double dt, int steps) {
+  kerf::LinearDynamicSystem system;
+  system.M = std::move(M);
+  system.K = std::move(K);
+  system.C = Eigen::SparseMatrix<double>(system.M.rows(), system.M.cols());
+  system.dofs = std::move(dofs);
+  system.load = [f](double) { return f; };
+  kerf::NewmarkIntegrator newmark(system, dt);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.size());
+  kerf::DynamicState state = kerf::consistent_initial_state(newmark.reduced(), zero, zero, 0.0, {});
+  for (int n = 0; n < steps; ++n) newmark.step(state);
+  return state;
+}
 
 // The unit tet (0,0,0), (1,0,0), (0,1,0), (0,0,1).
 inline kerf::TetMesh unit_tet() {

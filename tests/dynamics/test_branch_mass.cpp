@@ -20,6 +20,7 @@
 #include "kerf/quadrature/gauss_piece_rules.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
 
+#include "dynamics/cut_body.hpp"
 #include "support/cut_body.hpp"
 #include "support/run_program.hpp"
 
@@ -62,14 +63,6 @@ Eigen::VectorXd translation(const kerf::CutXfemModel& model, const Eigen::Vector
 
 double smallest_eigenvalue(const Eigen::MatrixXd& A) {
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
-}
-
-Eigen::SparseMatrix<double> linear_stiffness(const kerf::CutXfemModel& model) {
-  const kerf::DofMap all_free = kerf::make_dof_map(model.num_dof_nodes(), {});
-  kerf::SparseAssembler assembler(model.assembly_slots(), all_free);
-  Eigen::VectorXd unused = Eigen::VectorXd::Zero(all_free.num_free);
-  model.assemble_linear_stiffness(assembler, unused);
-  return assembler.matrix();
 }
 
 } // namespace
@@ -243,19 +236,12 @@ TEST_CASE("a slab with a crack tip and nothing held falls at g with Newmark, its
   const int steps = 20;
   for (const bool lumped : {false, true}) {
     CAPTURE(lumped);
-    kerf::LinearDynamicSystem system;
-    system.M = lumped ? kerf::lump_cut_xfem_mass(model, rho, kerf::LumpingScheme::virtual_tet, support::subtets)
-                      : kerf::assemble_cut_xfem_mass(model, rho, support::subtets);
-    system.K = linear_stiffness(model);
-    system.C = Eigen::SparseMatrix<double>(system.M.rows(), system.M.cols());
-    system.dofs = kerf::make_cut_xfem_dof_map(model, {});
-    const Eigen::VectorXd f = lumped ? kerf::lumped_gravity_load(model, rho, g, kerf::LumpingScheme::virtual_tet, support::subtets)
-                                     : model.gravity_load(rho, g);
-    system.load = [f](double) { return f; };
-    kerf::NewmarkIntegrator newmark(system, dt);
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.size());
-    kerf::DynamicState state = kerf::consistent_initial_state(newmark.reduced(), zero, zero, 0.0, {});
-    for (int n = 0; n < steps; ++n) newmark.step(state);
+    const kerf::DynamicState state = cut_body::newmark_from_rest(
+        lumped ? kerf::lump_cut_xfem_mass(model, rho, kerf::LumpingScheme::virtual_tet, support::subtets)
+               : kerf::assemble_cut_xfem_mass(model, rho, support::subtets),
+        support::full_linear_stiffness(model), kerf::make_cut_xfem_dof_map(model, {}),
+        lumped ? kerf::lumped_gravity_load(model, rho, g, kerf::LumpingScheme::virtual_tet, support::subtets) : model.gravity_load(rho, g), dt,
+        steps);
     const double drop = 0.5 * g.z() * state.t * state.t;
     const Eigen::VectorXd exact = translation(model, Eigen::Vector3d(0.0, 0.0, drop));
     const Eigen::Index N3 = 3 * model.mesh().num_nodes();

@@ -232,17 +232,10 @@ TEST_CASE("the freed part of a clamped cut block falls as g t^2 / 2 with the vir
   const int steps = 20;
   for (const kerf::LumpingScheme scheme : {kerf::LumpingScheme::virtual_tet, kerf::LumpingScheme::schoch_eq_81_82}) {
     CAPTURE(std::string(scheme == kerf::LumpingScheme::virtual_tet ? "virtual_tet" : "schoch_eq_81_82"));
-    kerf::LinearDynamicSystem system;
-    system.M = kerf::lump_cut_xfem_mass(body.model, rho, scheme, cut_body::subtets);
-    system.K = body.stiffness();
-    system.C = Eigen::SparseMatrix<double>(system.M.rows(), system.M.cols());
-    system.dofs = kerf::make_cut_xfem_dof_map(body.model, {{nodes_where(body.mesh, [](const Eigen::Vector3d& x) { return x.z() == 0.0; }), {0, 0, 0}}});
-    const Eigen::VectorXd f = kerf::lumped_gravity_load(body.model, rho, g, scheme, cut_body::subtets);
-    system.load = [f](double) { return f; };
-    kerf::NewmarkIntegrator newmark(system, dt);
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.size());
-    kerf::DynamicState state = kerf::consistent_initial_state(newmark.reduced(), zero, zero, 0.0, {});
-    for (int n = 0; n < steps; ++n) newmark.step(state);
+    const kerf::DynamicState state = cut_body::newmark_from_rest(
+        kerf::lump_cut_xfem_mass(body.model, rho, scheme, cut_body::subtets), body.stiffness(),
+        kerf::make_cut_xfem_dof_map(body.model, {{nodes_where(body.mesh, [](const Eigen::Vector3d& x) { return x.z() == 0.0; }), {0, 0, 0}}}),
+        kerf::lumped_gravity_load(body.model, rho, g, scheme, cut_body::subtets), dt, steps);
     const double drop = 0.5 * g.z() * state.t * state.t;
     // The phantom values u_i + a_k of the part above, node by node, against the free fall.
     double worst = 0.0;

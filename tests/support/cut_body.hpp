@@ -7,6 +7,8 @@
 #include "kerf/cut/crack_front.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
+#include "kerf/fem/dof_map.hpp"
+#include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/fem/linear_material.hpp"
 #include "kerf/mesh/triangle_surface.hpp"
 #include "kerf/quadrature/gauss_piece_rules.hpp"
@@ -22,6 +24,16 @@ namespace support {
 // Sub-tetrahedra with Gauss rules of the degree asked for.
 inline kerf::PieceQuadratureRule subtets(const Eigen::Matrix<double, 4, 3>&, const kerf::TetPieces& pieces, int piece, int degree) {
   return kerf::subtet_rule(pieces, piece, degree);
+}
+
+// The full linear stiffness K^X of a model on all 3 num_dof_nodes() DOFs, every one free (row
+// 3 d + c is component c of DOF node d).
+inline Eigen::SparseMatrix<double> full_linear_stiffness(const kerf::CutXfemModel& model) {
+  const kerf::DofMap all_free = kerf::make_dof_map(model.num_dof_nodes(), {});
+  kerf::SparseAssembler assembler(model.assembly_slots(), all_free);
+  Eigen::VectorXd no_lifting = Eigen::VectorXd::Zero(all_free.num_free);
+  model.assemble_linear_stiffness(assembler, no_lifting);
+  return assembler.matrix();
 }
 
 struct CutBody {
