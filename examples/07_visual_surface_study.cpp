@@ -73,24 +73,6 @@ double enclosed_volume(const kerf::TriangleSurface& s) {
   return volume;
 }
 
-/// The tet mesh's boundary as a triangle surface (the vertices it uses, renumbered).
-kerf::TriangleSurface boundary_surface(const kerf::TetMesh& mesh) {
-  const kerf::BoundaryFaces boundary = kerf::boundary_faces(mesh);
-  std::vector<int> index(static_cast<std::size_t>(mesh.num_nodes()), -1);
-  std::vector<int> used;
-  kerf::TriangleSurface s;
-  s.triangles.resize(boundary.faces.rows(), 3);
-  for (Eigen::Index f = 0; f < boundary.faces.rows(); ++f)
-    for (int a = 0; a < 3; ++a) {
-      int& i = index[static_cast<std::size_t>(boundary.faces(f, a))];
-      if (i < 0) i = static_cast<int>(used.size()), used.push_back(boundary.faces(f, a));
-      s.triangles(f, a) = i;
-    }
-  s.vertices.resize(static_cast<Eigen::Index>(used.size()), 3);
-  for (std::size_t v = 0; v < used.size(); ++v) s.vertices.row(static_cast<Eigen::Index>(v)) = mesh.nodes.row(used[v]);
-  return s;
-}
-
 } // namespace visual_surface_study
 
 int main(int argc, char** argv) {
@@ -106,7 +88,7 @@ int main(int argc, char** argv) {
     auto start = kerf_measure::clock::now();
     const kerf::TetMesh mesh = kerf::make_liver_mesh(target);
     const double mesh_seconds = seconds_since(start);
-    const kerf::TriangleSurface tet_boundary = boundary_surface(mesh);
+    const kerf::TriangleSurface tet_boundary = kerf::boundary_surface(mesh);
     double tet_volume = 0.0;
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
       const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(mesh, t);

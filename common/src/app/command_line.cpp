@@ -4,6 +4,7 @@
 
 #include <exception>
 #include <iostream>
+#include <string>
 #include <string_view>
 
 namespace kerf {
@@ -22,6 +23,20 @@ CommandLine parse_command_line(int argc, const char* const* argv) {
     else if (arg == "--moments-out") options.moments_out = value();
     else if (arg == "--probes-history") options.probes_history = value();
     else if (arg == "--out") options.out_dir = value();
+    else if (arg == "--tets") {
+      const std::string text = value();
+      std::size_t used = 0;
+      long long n = -1;
+      try {
+        n = std::stoll(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != text.size() || n < 1 || n > 100'000'000)
+        throw InputError("command line", "--tets", "expected a positive whole number of tets, got \"" + text + "\"");
+      options.tets = static_cast<int>(n);
+    } else if (arg == "--interactive") options.interactive = true;
+    else if (arg == "--events") options.events = value();
     else if (arg == "--quiet") options.quiet = true;
     else if (arg == "--help" || arg == "-h") options.help = true;
     else throw InputError("command line", std::string(arg), "unknown option (see --help)");
@@ -52,6 +67,11 @@ int run_guarded(int argc, const char* const* argv, const std::string& program, c
       throw InputError("command line", "--moments-out", "the moments of cut pieces are taught from chapter 4 on (04_cut_quadrature)");
     if (options.probes_history && !taught.probes_history)
       throw InputError("command line", "--probes-history", "the probes over time are taught from chapter 6 on (06_newmark)");
+    if ((options.tets || options.interactive || options.events) && !taught.organ)
+      throw InputError("command line", options.tets ? "--tets" : options.events ? "--events" : "--interactive",
+                       "the liver and its blade come with chapter 7 (07_liver)");
+    if (options.events && !options.interactive)
+      throw InputError("command line", "--events", "plays mouse events into the --interactive window: give --interactive too");
     if (options.help) {
       std::cout << usage;
       return;

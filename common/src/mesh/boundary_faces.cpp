@@ -48,4 +48,21 @@ double face_area(const TetMesh& mesh, const BoundaryFaces& boundary, Eigen::Inde
   return 0.5 * (x1 - x0).cross(x2 - x0).norm();
 }
 
+TriangleSurface boundary_surface(const TetMesh& mesh) {
+  const BoundaryFaces boundary = boundary_faces(mesh);
+  std::vector<int> index(static_cast<std::size_t>(mesh.num_nodes()), -1);
+  std::vector<int> used;
+  TriangleSurface s;
+  s.triangles.resize(boundary.faces.rows(), 3);
+  for (Eigen::Index f = 0; f < boundary.faces.rows(); ++f)
+    for (int a = 0; a < 3; ++a) {
+      int& i = index[static_cast<std::size_t>(boundary.faces(f, a))];
+      if (i < 0) i = static_cast<int>(used.size()), used.push_back(boundary.faces(f, a));
+      s.triangles(f, a) = i;
+    }
+  s.vertices.resize(static_cast<Eigen::Index>(used.size()), 3);
+  for (std::size_t v = 0; v < used.size(); ++v) s.vertices.row(static_cast<Eigen::Index>(v)) = mesh.nodes.row(used[v]);
+  return s;
+}
+
 } // namespace kerf

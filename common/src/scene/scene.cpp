@@ -1,6 +1,7 @@
 #include "kerf/scene/scene.hpp"
 
 #include "kerf/app/input_error.hpp"
+#include "kerf/mesh/liver_mesh.hpp"
 #include "kerf/solve/cholmod_ordering.hpp"
 
 #include <Eigen/Geometry>
@@ -146,10 +147,21 @@ NodeRegion read_region(const json& value, const std::string& path, const std::st
 
 MeshSpec read_mesh(const ObjectReader& scene, const std::filesystem::path& base) {
   ObjectReader r(scene.at("mesh"), "mesh", scene.file());
-  r.allow_only({"box", "file", "order", "scale"});
+  r.allow_only({"box", "file", "liver", "order", "scale"});
   MeshSpec mesh;
-  if (r.has("box") == r.has("file")) r.fail("mesh", "expected exactly one of \"box\" or \"file\"");
-  if (r.has("box")) {
+  if (int(r.has("box")) + int(r.has("file")) + int(r.has("liver")) != 1)
+    r.fail("mesh", "expected exactly one of \"box\", \"file\" or \"liver\"");
+  if (r.has("liver")) {
+    // Chapter 7's liver (mesh/liver_mesh.hpp): Mesh_3 makes it from an implicit surface in code.
+    mesh.is_box = false;
+    mesh.is_liver = true;
+    ObjectReader liver(r.at("liver"), "mesh.liver", scene.file());
+    liver.allow_only({"tets"});
+    mesh.liver_tets = liver.integer("tets", mesh.liver_tets);
+    if (mesh.liver_tets < liver_min_tets || mesh.liver_tets > liver_max_tets)
+      liver.fail("mesh.liver.tets", "expected an integer in [" + std::to_string(liver_min_tets) + ", " + std::to_string(liver_max_tets) +
+                                        "]: below, Mesh_3 cannot resolve the lobes; above, the mesh would take minutes");
+  } else if (r.has("box")) {
     ObjectReader box(r.at("box"), "mesh.box", scene.file());
     box.allow_only({"min", "max", "cells"});
     box.at("min");
@@ -174,7 +186,7 @@ MeshSpec read_mesh(const ObjectReader& scene, const std::filesystem::path& base)
     mesh.scale = r.number("scale", 1.0);
     if (!(mesh.scale > 0.0)) r.fail("mesh.scale", "expected a positive number");
   }
-  if (r.has("scale") && mesh.is_box) r.fail("mesh.scale", "only meaningful with \"file\"");
+  if (r.has("scale") && (mesh.is_box || mesh.is_liver)) r.fail("mesh.scale", "only meaningful with \"file\"");
   mesh.order = r.integer("order", 1);
   if (mesh.order != 1 && mesh.order != 2) r.fail("mesh.order", "expected 1 (Tet4) or 2 (Tet10)");
   return mesh;
@@ -441,6 +453,73 @@ CrackTipSpec read_crack_tip(const ObjectReader& r) {
   return spec;
 }
 
+/// "blade" (chapter 7): the cutting edge's keyframes, each {"time": s, "edge": [[x,y,z], [x,y,z]]}.
+BladeSpec read_blade(const ObjectReader& r) {
+  BladeSpec spec;
+  if (!r.has("blade")) return spec;
+  spec.given = true;
+  ObjectReader b(r.at("blade"), "blade", r.file());
+  b.allow_only({"path", "quad_length", "samples"});
+  const json& path = b.array("path");
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const std::string name = "blade.path[" + std::to_string(i) + "]";
+    ObjectReader k(path[i], name, r.file());
+    k.allow_only({"time", "edge"});
+    k.at("time");
+    BladeKeyframe frame;
+    frame.time = k.number("time", 0.0);
+    const json& edge = k.array("edge");
+    if (edge.size() != 2) k.fail(name + ".edge", "expected two points [[x,y,z], [x,y,z]]: the ends of the cutting edge (m)");
+    for (std::size_t e = 0; e < 2; ++e) {
+      const std::string point = name + ".edge[" + std::to_string(e) + "]";
+      if (!edge[e].is_array() || edge[e].size() != 3) k.fail(point, "expected an array of 3 numbers");
+      Eigen::Vector3d x;
+      for (int c = 0; c < 3; ++c) x[c] = k.as_number(edge[e][static_cast<std::size_t>(c)], point + "[" + std::to_string(c) + "]");
+      (e == 0 ? frame.edge.start : frame.edge.end) = x;
+    }
+    spec.path.push_back(frame);
+  }
+  // BladePath states the path's own rules (at least two keyframes, times increasing, edges of
+  // non-zero length) in one line, which we pass on with the field.
+  try {
+    BladePath check(spec.path);
+  } catch (const std::invalid_argument& error) {
+    b.fail("blade.path", error.what());
+  }
+  spec.quad_length = b.number("quad_length", spec.quad_length);
+  if (!(spec.quad_length >= 0.0)) b.fail("blade.quad_length", "expected a length >= 0 (m; 0: a quarter of the mesh's mean edge)");
+  spec.samples = b.integer("samples", spec.samples);
+  if (spec.samples < 2 || spec.samples > 1000) b.fail("blade.samples", "expected an integer in [2, 1000]");
+  return spec;
+}
+
+/// "render" (chapter 7): the PNG frames of the visual surface and their camera.
+RenderSpec read_render(const ObjectReader& r) {
+  RenderSpec spec;
+  if (!r.has("render")) return spec;
+  ObjectReader o(r.at("render"), "render", r.file());
+  o.allow_only({"every", "width", "height", "camera", "visual_size", "animation"});
+  spec.every = o.integer("every", spec.every);
+  if (spec.every < 0) o.fail("render.every", "expected an integer >= 0 (0: no frames)");
+  spec.width = o.integer("width", spec.width);
+  spec.height = o.integer("height", spec.height);
+  if (spec.width < 16 || spec.width > 8192) o.fail("render.width", "expected an integer in [16, 8192] (pixels)");
+  if (spec.height < 16 || spec.height > 8192) o.fail("render.height", "expected an integer in [16, 8192] (pixels)");
+  spec.visual_size = o.number("visual_size", spec.visual_size);
+  if (!(spec.visual_size > 0.0)) o.fail("render.visual_size", "expected a positive length (m)");
+  spec.animation = o.boolean("animation", spec.animation);
+  if (o.has("camera")) {
+    ObjectReader c(o.at("camera"), "render.camera", r.file());
+    c.allow_only({"azimuth", "elevation", "zoom"});
+    spec.azimuth = c.number("azimuth", spec.azimuth);
+    spec.elevation = c.number("elevation", spec.elevation);
+    spec.zoom = c.number("zoom", spec.zoom);
+    if (!(std::abs(spec.elevation) < 90.0)) c.fail("render.camera.elevation", "expected degrees in (-90, 90): z stays up on the screen");
+    if (!(spec.zoom > 0.0)) c.fail("render.camera.zoom", "expected a positive number");
+  }
+  return spec;
+}
+
 /// "solver": which linear solver, and how hard an iterative one works.
 SolverSettings read_solver(const ObjectReader& r) {
   SolverSettings solver;
@@ -491,7 +570,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   }
   ObjectReader r(document, "", file);
   r.allow_only({"name", "mesh", "material", "model", "dirichlet", "gravity", "traction", "cuts", "quadrature", "crack_tip", "time",
-                "output", "solver", "quasi_static"});
+                "output", "solver", "quasi_static", "blade", "render"});
 
   Scene scene;
   scene.source = source;
@@ -522,6 +601,9 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.quasi_static = read_quasi_static(r);
   scene.solver = read_solver(r);
   scene.solver_given = r.has("solver");
+  scene.blade = read_blade(r);
+  scene.render = read_render(r);
+  scene.render_given = r.has("render");
   return scene;
 }
 
@@ -548,6 +630,11 @@ void require_features(const Scene& scene, const SceneFeatures& taught) {
                          "triangle-mesh cuts are taught from chapter 4 on (04_cut_quadrature)");
   if (scene.crack_tip.given && !taught.crack_tip)
     throw InputError(file, "crack_tip", "crack-tip enrichment is taught from chapter 5 on (05_crack_tip)");
+  if (!taught.organ) {
+    if (scene.mesh.is_liver) throw InputError(file, "mesh.liver", "the liver mesh is made from chapter 7 on (07_liver)");
+    if (scene.blade.given) throw InputError(file, "blade", "a moving blade cuts from chapter 7 on (07_liver)");
+    if (scene.render_given) throw InputError(file, "render", "rendered frames are drawn from chapter 7 on (07_liver)");
+  }
   if (scene.time.integrator != "static" && !taught.dynamics)
     throw InputError(file, "time.integrator", "\"" + scene.time.integrator + "\" is taught from chapter 6 on (06_newmark)");
 }

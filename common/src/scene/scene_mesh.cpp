@@ -5,6 +5,7 @@
 #include "kerf/fem/rigid_motion_check.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/mesh/box_mesh.hpp"
+#include "kerf/mesh/liver_mesh.hpp"
 #include "kerf/mesh/read_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 
@@ -14,7 +15,15 @@ namespace kerf {
 
 TetMesh make_scene_mesh(const Scene& scene, std::ostream* warnings) {
   TetMesh mesh;
-  if (scene.mesh.is_box) {
+  if (scene.mesh.is_liver) {
+    // The range was checked with the scene; Mesh_3 failing on a valid size is a failure of the
+    // mesher, said in one line.
+    try {
+      mesh = make_liver_mesh(scene.mesh.liver_tets);
+    } catch (const std::exception& error) {
+      throw InputError(scene.source.string(), "mesh.liver.tets", std::string("Mesh_3 could not make the liver: ") + error.what());
+    }
+  } else if (scene.mesh.is_box) {
     mesh = make_box_mesh(scene.mesh.box_min, scene.mesh.box_max, scene.mesh.box_cells);
   } else {
     if (!std::filesystem::exists(scene.mesh.file))

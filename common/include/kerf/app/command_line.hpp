@@ -17,6 +17,9 @@ struct CommandLine {
   std::optional<std::filesystem::path> moments_out; ///< --moments-out FILE (chapter 4 on): the moments of every cut piece
   std::optional<std::filesystem::path> probes_history; ///< --probes-history FILE (chapter 6 on): the probes at every step
   std::filesystem::path out_dir = "output";         ///< --out DIR: where VTK files and CSV go
+  std::optional<int> tets;                          ///< --tets N (chapter 7): the liver's size, overriding the scene's
+  bool interactive = false;                         ///< --interactive (chapter 7): cut with the mouse in a window
+  std::optional<std::filesystem::path> events;      ///< --events FILE.csv (chapter 7): play these mouse events into the window, then close it
   bool quiet = false;                               ///< --quiet: no progress lines
   bool help = false;                                ///< --help
 };
@@ -30,6 +33,7 @@ CommandLine parse_command_line(int argc, const char* const* argv);
 struct CommandLineFeatures {
   bool moments_out = false; ///< --moments-out (chapter 4 on)
   bool probes_history = false; ///< --probes-history (chapter 6 on)
+  bool organ = false;          ///< --tets and --interactive (chapter 7)
 };
 
 /// Runs `body` and turns every exception into one line on stderr and a non-zero exit status:

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "kerf/mesh/tet_mesh.hpp"
+#include "kerf/mesh/triangle_surface.hpp"
 
 #include <vector>
 
@@ -20,6 +21,10 @@ struct BoundaryFaces {
 
 /// Finds the faces that only one tet owns. Cost O(#T) with a hash map keyed by sorted corners.
 BoundaryFaces boundary_faces(const TetMesh& mesh);
+
+/// The boundary as a triangle surface of its own: the corners of the faces, renumbered over the
+/// nodes they use (chapter 7 draws a mesh read from a file by it).
+TriangleSurface boundary_surface(const TetMesh& mesh);
 
 /// Area of face f (its corners; mid-edge nodes lie on straight edges and do not change it).
 double face_area(const TetMesh& mesh, const BoundaryFaces& boundary, Eigen::Index f);

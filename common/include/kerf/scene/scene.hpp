@@ -2,6 +2,7 @@
 /// @brief The scene file (JSON): the user's description of a problem, read and validated.
 #pragma once
 
+#include "kerf/cut/blade_path.hpp"
 #include "kerf/fem/linear_material.hpp"
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/scene/displacement_file.hpp"
@@ -15,9 +16,12 @@
 
 namespace kerf {
 
-/// Where the mesh comes from: the box mesher or a file, and at which order.
+/// Where the mesh comes from: the box mesher, a file, or chapter 7's liver made by CGAL Mesh_3
+/// (mesh/liver_mesh.hpp), and at which order.
 struct MeshSpec {
-  bool is_box = true;                  ///< true: "box"; false: "file"
+  bool is_box = true;                  ///< true: "box"; false: "file" or "liver"
+  bool is_liver = false;               ///< "liver": {"tets": n} (chapter 7)
+  int liver_tets = 10000;              ///< the liver's target number of tets, in [1000, 1000000]
   Eigen::Vector3d box_min{0, 0, 0};    ///< box lower corner (m)
   Eigen::Vector3d box_max{1, 1, 1};    ///< box upper corner (m)
   Eigen::Vector3i box_cells{1, 1, 1};  ///< hex cells along x, y, z (each split into 6 tets)
@@ -127,6 +131,26 @@ struct TimeSpec {
   std::string corotation = "frozen";
 };
 
+/// The "blade" field (chapter 7): the cutting edge's path in the world, and how finely its
+/// sweep is recorded as the cut.
+struct BladeSpec {
+  bool given = false;
+  std::vector<BladeKeyframe> path; ///< checked by BladePath: >= 2 keyframes, times increasing, edges of non-zero length
+  /// The sheet grows by one quad when the edge has moved this far (m) since the sheet's last
+  /// edge (Gutierrez's "collision quad" size; 0: the default, a quarter of the mesh's mean edge).
+  double quad_length = 0.0;
+  int samples = 9; ///< points along the edge pulled back into the reference configuration, >= 2
+};
+
+/// The "render" field (chapter 7): PNG frames of the visual surface, drawn off-screen.
+struct RenderSpec {
+  int every = 10;            ///< a frame every n steps (0: no frames)
+  int width = 960, height = 720; ///< pixels
+  double azimuth = -60, elevation = 35, zoom = 1.25; ///< the fixed camera (camera_view.hpp), degrees
+  double visual_size = 0.003; ///< triangle size of the liver's visual surface (m)
+  bool animation = true;     ///< assemble the frames into an animated PNG
+};
+
 /// Everything a scene file says. Defaults are those of the book's scene reference page.
 struct Scene {
   std::string name = "scene";            ///< used for output file names
@@ -145,6 +169,9 @@ struct Scene {
   SolverSettings solver;
   bool solver_given = false;             ///< the scene has a "solver" field (chapter 6's steps have their own default otherwise)
   QuasiStaticSpec quasi_static;
+  BladeSpec blade;   ///< chapter 7
+  RenderSpec render; ///< chapter 7
+  bool render_given = false;
 };
 
 /// Reads and validates a scene file. Every problem (bad JSON, unknown field, wrong type, value
@@ -165,6 +192,7 @@ struct SceneFeatures {
   bool dynamics = false;
   bool cut_quadrature = false; ///< triangle-mesh cuts, several cuts, cut Tet10, the "quadrature" field (chapter 4)
   bool crack_tip = false;      ///< the "crack_tip" field (chapter 5)
+  bool organ = false;          ///< the "liver" mesh, the "blade" and "render" fields (chapter 7)
 };
 
 /// Throws InputError if `scene` needs a method that is not in `taught`.

@@ -158,6 +158,9 @@ public:
   bool has_branch_functions(Eigen::Index t) const { return first_branch_slot_[static_cast<std::size_t>(t)] >= 0; }
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
   Eigen::MatrixX3d phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const;
+  /// The piece of tet t that holds x (one above the cut if x lies on it; 0 for a tet integrated
+  /// whole), -1 if x is not in the tet.
+  int piece_at(Eigen::Index t, const Eigen::Vector3d& x) const;
   /// The n shape functions of tet t at the point x (m).
   Eigen::VectorXd shape_values(Eigen::Index t, const Eigen::Vector3d& x) const;
   /// The DOF node that gives local node a of tet t its value on piece p: the node itself, or
@@ -225,9 +228,6 @@ private:
   // The branch functions of tet t at x on a piece on side `side` of the cut (0: not known):
   // one column per branch slot of the tet, values in row 0 and the gradient in rows 1-3.
   Eigen::Matrix<double, 4, Eigen::Dynamic> branch_functions_at(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
-  // The piece of tet t that holds x (one above the cut if x lies on it; 0 for a tet integrated
-  // whole), -1 if x is not in the tet.
-  int piece_at(Eigen::Index t, const Eigen::Vector3d& x) const;
   // A tet with branch nodes: the dynamic-size path of assemble_tet, linear or corotated with one
   // rotation per piece (corotated_piece.hpp).
   void assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,

@@ -1,0 +1,914 @@
+/* Kerf, chapter 7: a liver cut by a moving blade, in real time.
+
+   Build:   cmake --preset release && cmake --build --preset release --target 07_liver
+
+   Sample runs:
+     xvfb-run -a 07_liver                        (the demo: frames need a display, xvfb-run gives one)
+     07_liver --scene examples/07_liver_cut.json --out output/liver
+     07_liver --tets 3000 --out output/liver_3k
+     xvfb-run -a 07_liver --interactive          (drag with the left mouse button to cut)
+
+   Description: a liver of our own (mesh/liver_shape.hpp: two lobes, 0.20 x 0.15 x 0.10 m),
+   meshed by CGAL Mesh_3 into about 10 000 Tet4, liver tissue (E = 4 kPa, nu = 0.45,
+   rho = 1060 kg/m^3), held at the back where the ligaments and the vena cava tie it to the
+   diaphragm and resting on the organs beneath its back half. Gravity pulls it down from rest;
+   a scalpel, its edge upright, enters the right lobe from the side at 0.5 s, cuts across it
+   6 cm deep, and stops inside the organ at 1.7 s; the front half sags and the wound gapes.
+   2.5 s of corotational Newmark at 10 ms a step.
+
+          blade edge (world)                    the cut in the reference configuration
+              |  ---> moves along -x              +--------------------------+
+              |                                    | sheet of swept quads      |  front: the blade's
+       ~~~~~~~|~~~~~~~~  liver top                 |  (pulled back)            |  last edge and the
+              |                                    +--------------------------+  path of its tip
+              +  tip 6 cm deep
+
+   What is new:
+   - the cut is not given: it grows while the body moves. Each step the blade's edge is pulled
+     back into the reference configuration (xfem/blade_pull_back.hpp) and extends a sheet of
+     quads (cut/cut_sheet.hpp), Gutierrez and Ramos's semi-progressive cut decides which tets the
+     sheet has crossed (cut/semi_progressive_cut.hpp), and only when a tet becomes crossed is the
+     model rebuilt on the longer cut, the state carried over with the field unchanged
+     (xfem/cut_state_transfer.hpp);
+   - pictures: a fine visual surface (xfem/visual_surface.hpp) and the walls of the cut
+     (xfem/cut_faces.hpp), drawn from a fixed camera (render/organ_view.hpp), a PNG per frame
+     and an animated PNG of them all (io/animated_png.hpp);
+   - a window in which the mouse is the blade (--interactive).
+   Read chapters 1-6 first. */
+
+// @sect3{Include files}
+//
+// New since chapter 6: the liver, the blade and its cut, the transfer of the state, and the
+// render area (which needs a display, so chapters 1-6 do not link it).
+#include "kerf/app/command_line.hpp"
+#include "kerf/app/input_error.hpp"
+#include "kerf/cut/blade_path.hpp"
+#include "kerf/cut/cut_sheet.hpp"
+#include "kerf/cut/cut_surfaces.hpp"
+#include "kerf/cut/mesh_pieces.hpp"
+#include "kerf/cut/semi_progressive_cut.hpp"
+#include "kerf/dynamics/energy_account.hpp"
+#include "kerf/dynamics/nonlinear_newmark.hpp"
+#include "kerf/io/animated_png.hpp"
+#include "kerf/io/probes_csv.hpp"
+#include "kerf/io/write_vtu.hpp"
+#include "kerf/mesh/boundary_faces.hpp"
+#include "kerf/mesh/implicit_surface_mesh.hpp"
+#include "kerf/mesh/liver_mesh.hpp"
+#include "kerf/mesh/liver_shape.hpp"
+#include "kerf/mesh/point_locator.hpp"
+#include "kerf/mesh/tet_neighbours.hpp"
+#include "kerf/mesh/tet_quality.hpp"
+#include "kerf/render/organ_view.hpp"
+#include "kerf/scene/scene.hpp"
+#include "kerf/scene/scene_crack_tip.hpp"
+#include "kerf/scene/scene_dynamic_mass.hpp"
+#include "kerf/scene/scene_mesh.hpp"
+#include "kerf/scene/scene_quadrature.hpp"
+#include "kerf/scene/scene_quasi_static.hpp"
+#include "kerf/xfem/blade_pull_back.hpp"
+#include "kerf/xfem/cut_faces.hpp"
+#include "kerf/xfem/cut_state_transfer.hpp"
+#include "kerf/xfem/cut_xfem_model.hpp"
+#include "kerf/xfem/cut_xfem_output.hpp"
+#include "kerf/xfem/surface_enrichment.hpp"
+#include "kerf/xfem/visual_surface.hpp"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCellPicker.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+namespace chapter07 {
+
+// @sect3{The demo scene}
+//
+// Every number of the scene, and where it comes from:
+// - the liver: mesh/liver_shape.hpp's, 10 000 Tet4 (--tets changes it);
+// - the tissue: E = 4 kPa, nu = 0.45, rho = 1060 kg/m^3. Human liver measured in vivo by
+//   elastography is 2-6 kPa when healthy (transient elastography's normal range; our E is in
+//   it), nearly incompressible (nu = 0.45-0.49 in the simulation literature; Tet4 locks above
+//   0.45, chapter 1) and a little denser than water (1050-1070 kg/m^3);
+// - the support: the liver hangs from the diaphragm by its bare area and the coronary and
+//   falciform ligaments, the vena cava runs up its back, and it rests on the organs beneath.
+//   We hold every node of the upper back (y >= 0.045, z >= -0.01) and of the underside's back
+//   half (y >= -0.01, z <= -0.03); the front half overhangs. Held only at the back, it would
+//   droop 6 cm under its weight at this E, and the blade would pass above it;
+// - gravity -z; Rayleigh damping C = 2 M + 0.01 K_R: the sag rings down within half a second;
+// - the blade: an upright edge 9 cm long, from 3 cm above the lobe's top down to z = 0, in the
+//   plane y = -0.005, just in front of the held back; waiting beside the organ until 0.5 s, then
+//   moving 15 cm along -x in 1.2 s (12.5 cm/s) and stopping inside the organ at x = -0.03. The
+//   cut is partial in depth and in length, so its front (the blade's last edge and the path of
+//   its tip) stays inside, and the overhanging front half, whose top is stretched by its weight,
+//   pulls the wound open;
+// - 2.5 s at 10 ms a step; the frames: every 5 steps (20 per simulated second), 960 x 720.
+constexpr const char* demo_scene = R"({
+  "name": "liver_cut",
+  "mesh": {"liver": {"tets": 10000}, "order": 1},
+  "material": {"young": 4000, "poisson": 0.45, "density": 1060},
+  "model": "corotational",
+  "gravity": [0, 0, -9.81],
+  "dirichlet": [{"region": {"box": {"min": [-1, 0.045, -0.01], "max": [1, 1, 1]}}},
+                {"region": {"box": {"min": [-1, -0.01, -1], "max": [1, 1, -0.03]}}}],
+  "blade": {"path": [{"time": 0.5, "edge": [[0.12, -0.005, 0.09], [0.12, -0.005, 0.0]]},
+                     {"time": 1.7, "edge": [[-0.03, -0.005, 0.09], [-0.03, -0.005, 0.0]]}]},
+  "time": {"integrator": "newmark", "dt": 0.01, "steps": 250, "mass": "lumped", "rayleigh": [2, 0.01],
+           "corotation": "frozen"},
+  "output": {"every": 10},
+  "render": {"every": 5, "width": 960, "height": 720, "camera": {"azimuth": -100, "elevation": 40, "zoom": 1.3}}
+})";
+
+// @sect3{Where the time of a step goes}
+//
+// The issue's stacked chart: each step's wall-clock seconds, by what they were spent on.
+struct StepTimes {
+  double blade = 0.0;    // pulling the edge back, growing the sheet, the crossing test
+  double topology = 0.0; // rebuilding pieces, enrichment, model, mass and integrator, and the state transfer
+  double assemble = 0.0; // the corotated forces and tangent (inside the Newmark step)
+  double solve = 0.0;    // the rest of the Newmark step: its linear solve and vector work
+  double render = 0.0;   // moving the visual surface and drawing a frame
+  double output = 0.0;   // writing files
+};
+
+// @sect3{A script of mouse events}
+//
+// The interactive mode's test plays these into the window: `step,event,x,y,shift` with event
+// press, move, release (the left button) or key_q, x and y in pixels from the window's lower
+// left corner, shift 0 or 1; rows in increasing step.
+struct ScriptedEvent {
+  int step = 0;
+  std::string event;
+  int x = 0, y = 0;
+  bool shift = false;
+};
+
+std::vector<ScriptedEvent> read_events_csv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw kerf::InputError(file.string(), "file", "cannot open the events file");
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("step,event,x,y,shift", 0) != 0)
+    throw kerf::InputError(file.string(), "header", "expected the header step,event,x,y,shift");
+  std::vector<ScriptedEvent> events;
+  for (int row = 2; std::getline(in, line); ++row) {
+    if (line.empty()) continue;
+    std::istringstream fields(line);
+    ScriptedEvent e;
+    std::string step, x, y, shift;
+    std::getline(fields, step, ',');
+    std::getline(fields, e.event, ',');
+    std::getline(fields, x, ',');
+    std::getline(fields, y, ',');
+    std::getline(fields, shift);
+    const std::string where = "row " + std::to_string(row);
+    try {
+      e.step = std::stoi(step);
+      e.x = std::stoi(x);
+      e.y = std::stoi(y);
+      e.shift = std::stoi(shift) != 0;
+    } catch (const std::exception&) {
+      throw kerf::InputError(file.string(), where, "expected integers for step, x, y and shift");
+    }
+    if (e.event != "press" && e.event != "move" && e.event != "release" && e.event != "key_q")
+      throw kerf::InputError(file.string(), where + ".event", "expected press, move, release or key_q, got \"" + e.event + "\"");
+    if (e.step < 1 || (!events.empty() && e.step < events.back().step))
+      throw kerf::InputError(file.string(), where + ".step", "expected steps from 1 on, in increasing order");
+    events.push_back(e);
+  }
+  return events;
+}
+
+// @sect3{The LiverCut class}
+//
+// Chapter 6's skeleton with apply_cut called again whenever the blade has crossed a tet.
+class LiverCut {
+public:
+  LiverCut(kerf::Scene scene, kerf::CommandLine options) : scene_(std::move(scene)), options_(std::move(options)) {}
+  void run();
+  void run_interactive();
+
+private:
+  void make_mesh();
+  void setup_blade();
+  void setup_visual(bool need_view, bool on_screen);
+  void apply_cut();
+  void setup_system();
+  bool advance_blade(const kerf::BladeEdge& world, bool blade_done);
+  void do_timestep(int step, const kerf::BladeEdge& blade, bool blade_done);
+  void check_state(int step) const;
+  void output_step(int step);
+  void draw(int step);
+  void output_results();
+  void report(const std::string& line) const {
+    if (!options_.quiet) std::cout << line << '\n';
+  }
+  const kerf::SurfaceEnrichment& enrichment() const { return crack_tip_ ? crack_tip_->sign_enrichment() : *enrichment_; }
+
+  kerf::Scene scene_;
+  kerf::CommandLine options_;
+  kerf::TetMesh mesh_;
+  kerf::BoundaryFaces boundary_;
+  std::shared_ptr<const kerf::TetNeighbours> neighbours_;
+  std::unique_ptr<kerf::PointLocator> locator_;
+  std::vector<kerf::DirichletNodes> held_;
+
+  // The cut as it grows: the sheets the blade has left (one per pass through the organ, the last
+  // one perhaps still growing), and the crossing state of every edge and tet.
+  std::unique_ptr<kerf::BladePath> path_;
+  double quad_length_ = 0.0;
+  std::vector<kerf::CutSheet> sheets_;
+  bool sheet_open_ = false;              // the blade is in the tissue and the last sheet grows
+  std::optional<kerf::BladeEdge> outside_edge_; // the blade's last world edge before it entered
+  kerf::ReferenceBlade last_blade_;
+  std::unique_ptr<kerf::SemiProgressiveCut> crossing_;
+  int topology_changes_ = 0;
+
+  // The model of the current cut (rebuilt by apply_cut), and what it refers to.
+  std::unique_ptr<kerf::CutSurfaces> cuts_;
+  std::unique_ptr<kerf::MeshPieces> pieces_;
+  std::unique_ptr<kerf::SurfaceEnrichment> enrichment_; // chapter 4's, without a "crack_tip" field
+  std::unique_ptr<kerf::SceneCrackTip> crack_tip_;
+  kerf::PieceRuleFunction rule_;
+  std::unique_ptr<kerf::CutXfemModel> model_;
+  kerf::DofMap dofs_;
+  std::unique_ptr<kerf::SparseAssembler> tangent_assembler_;
+  kerf::NonlinearDynamicSystem system_;
+  std::unique_ptr<kerf::NonlinearNewmarkIntegrator> newmark_;
+  kerf::DynamicState state_;
+  kerf::EnergyAccount account_;
+  double energy_scale_ = 0.0;
+  double body_mass_ = 0.0;
+  int newton_failures_ = 0;
+
+  // Pictures.
+  std::unique_ptr<kerf::VisualSurface> visual_;
+  std::unique_ptr<kerf::OrganView> view_;
+  std::vector<std::filesystem::path> png_frames_;
+
+  // Output along the run.
+  StepTimes step_times_, total_times_;
+  double max_step_seconds_ = 0.0, max_topology_step_seconds_ = 0.0;
+  Eigen::MatrixXd probe_points_;
+  std::ofstream energy_csv_, history_csv_, timings_csv_, cuts_csv_;
+  double mesh_volume_ = 0.0; // the uncut mesh's, sum of |det J| / 6
+  std::vector<std::pair<double, std::filesystem::path>> frames_;
+};
+
+// @sect4{LiverCut::make_mesh}
+//
+// The scene's mesh (the liver by default, made by Mesh_3 with the size --tets asks for), its
+// quality, and the structures every rebuild of the cut shares: the face and node adjacency and a
+// point locator of the reference mesh.
+void LiverCut::make_mesh() {
+  if (options_.tets) {
+    if (!scene_.mesh.is_liver) throw kerf::InputError("command line", "--tets", "only for a scene whose mesh is the \"liver\"");
+    if (*options_.tets < kerf::liver_min_tets || *options_.tets > kerf::liver_max_tets)
+      throw kerf::InputError("command line", "--tets",
+                             "expected a number of tets in [" + std::to_string(kerf::liver_min_tets) + ", " +
+                                 std::to_string(kerf::liver_max_tets) + "]");
+    scene_.mesh.liver_tets = *options_.tets;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  mesh_ = kerf::make_scene_mesh(scene_, &std::cerr);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  boundary_ = kerf::boundary_faces(mesh_);
+  neighbours_ = std::make_shared<const kerf::TetNeighbours>(kerf::tet_neighbours(mesh_));
+  locator_ = std::make_unique<kerf::PointLocator>(mesh_);
+  const kerf::TetQualitySummary quality = kerf::tet_quality_summary(mesh_);
+  std::ostringstream line;
+  line.precision(3);
+  line << "mesh: " << mesh_.num_nodes() << " nodes, " << mesh_.num_tets() << (mesh_.order() == 1 ? " Tet4" : " Tet10")
+       << (scene_.mesh.is_liver ? " (Mesh_3, " : " (read, ") << seconds << " s); quality: min dihedral angle "
+       << quality.min_dihedral_angle << " deg, min radius ratio " << quality.min_radius_ratio << "; model " << scene_.model;
+  report(line.str());
+  held_ = kerf::scene_held_nodes(scene_, mesh_, &std::cerr);
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
+    const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(mesh_, t);
+    mesh_volume_ += std::abs((X.row(1) - X.row(0)).dot((X.row(2) - X.row(0)).cross(X.row(3) - X.row(0)))) / 6.0;
+  }
+}
+
+// @sect4{LiverCut::setup_blade}
+//
+// The path, the crossing state, and the sheet's quad length: the scene's, or a quarter of the
+// mesh's mean edge (Gutierrez: "better responses if the size of this quad is approximated to the
+// average sizes of the elements"; a quarter keeps the delay before a tet is cut below the tet).
+void LiverCut::setup_blade() {
+  crossing_ = std::make_unique<kerf::SemiProgressiveCut>(mesh_);
+  if (!scene_.blade.given) return;
+  path_ = std::make_unique<kerf::BladePath>(scene_.blade.path);
+  quad_length_ = scene_.blade.quad_length;
+  if (quad_length_ == 0.0) {
+    double length = 0.0;
+    for (int e = 0; e < crossing_->num_edges(); ++e) {
+      const std::array<int, 2> ends = crossing_->edge_nodes(e);
+      length += (mesh_.nodes.row(ends[0]) - mesh_.nodes.row(ends[1])).norm();
+    }
+    quad_length_ = 0.25 * length / crossing_->num_edges();
+  }
+  std::ostringstream line;
+  line.precision(3);
+  line << "blade: " << path_->keyframes().size() << " keyframes, " << path_->start_time() << " s to " << path_->end_time()
+       << " s, quad length " << 1e3 * quad_length_ << " mm";
+  report(line.str());
+}
+
+// @sect4{LiverCut::setup_visual}
+//
+// The picture's surface: for the built-in liver a fine mesh of its implicit surface (Mesh_3's
+// surface mesher, triangles of render.visual_size), several times finer than the tets' boundary;
+// for a mesh read from a file, its own boundary. Embedded once in the reference tets.
+void LiverCut::setup_visual(bool need_view, bool on_screen) {
+  kerf::TriangleSurface surface;
+  if (scene_.mesh.is_liver) {
+    surface = kerf::implicit_surface_mesh(kerf::liver_phi, kerf::liver_centre(), kerf::liver_bounding_radius(),
+                                          kerf::implicit_surface_sizing(scene_.render.visual_size));
+  } else {
+    surface = kerf::boundary_surface(mesh_);
+  }
+  visual_ = std::make_unique<kerf::VisualSurface>(mesh_, surface);
+  report("visual surface: " + std::to_string(surface.num_triangles()) + " triangles (" +
+         std::to_string(static_cast<double>(surface.num_triangles()) / boundary_.faces.rows()).substr(0, 4) +
+         " times the tet mesh's boundary)");
+  if (!need_view) return;
+  kerf::OrganViewSettings settings;
+  settings.width = scene_.render.width;
+  settings.height = scene_.render.height;
+  settings.camera = {.azimuth = scene_.render.azimuth, .elevation = scene_.render.elevation, .zoom = scene_.render.zoom};
+  settings.on_screen = on_screen;
+  view_ = std::make_unique<kerf::OrganView>(surface, settings);
+}
+
+// @sect4{LiverCut::apply_cut}
+//
+// Chapter 4's (or with a "crack_tip" field chapter 5's) model of the cut as the sheets stand,
+// then the system on it; the state of the model before, if there was one, carried over
+// (cut_state_transfer.hpp): the standard DOFs as they are, each enrichment from the field of the
+// old piece that holds its part, so the field, and with it every energy, is the same before and
+// after.
+void LiverCut::apply_cut() {
+  std::vector<kerf::TriangleSurface> surfaces;
+  for (const kerf::CutSheet& sheet : sheets_)
+    if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
+  auto cuts = std::make_unique<kerf::CutSurfaces>(std::move(surfaces));
+  auto pieces = std::make_unique<kerf::MeshPieces>(kerf::cut_mesh_into_pieces(mesh_, *cuts, neighbours_));
+  std::unique_ptr<kerf::SceneCrackTip> crack_tip;
+  std::unique_ptr<kerf::SurfaceEnrichment> enrichment;
+  if (scene_.crack_tip.given) crack_tip = std::make_unique<kerf::SceneCrackTip>(scene_, mesh_, *pieces, *cuts, nullptr);
+  else enrichment = std::make_unique<kerf::SurfaceEnrichment>(kerf::make_surface_enrichment(mesh_, *pieces));
+  auto model = std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, *pieces, crack_tip ? crack_tip->sign_enrichment() : *enrichment,
+                                                    rule_, crack_tip ? crack_tip->tip_functions() : nullptr);
+  const bool rebuild = model_ != nullptr;
+  const double kinetic_before = account_.kinetic, elastic_before = account_.elastic;
+  if (model_) {
+    state_.u = kerf::transfer_cut_state(*model_, *model, state_.u);
+    state_.v = kerf::transfer_cut_state(*model_, *model, state_.v);
+    state_.a = kerf::transfer_cut_state(*model_, *model, state_.a);
+  }
+  // The old model is gone only now: the transfer read it. Then what it referred to.
+  model_ = std::move(model);
+  crack_tip_ = std::move(crack_tip);
+  enrichment_ = std::move(enrichment);
+  pieces_ = std::move(pieces);
+  cuts_ = std::move(cuts);
+  setup_system();
+  if (rebuild && cuts_csv_.is_open()) {
+    // Nothing lost: the pieces' volumes (the weights of their rules) and the mass e^T M e of a
+    // unit translation against the uncut mesh's, and the energies of the same field in the old
+    // and the new DOFs.
+    double volume = 0.0;
+    for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t)
+      for (int p = 0; p < (model_->split(t) ? pieces_->num_pieces(t) : 1); ++p) volume += model_->integrated_volume(t, p);
+    char row[512];
+    std::snprintf(row, sizeof row, "%d,%.17g,%d,%ld,%ld,%.6e,%.6e,%.17g,%.17g,%.17g,%.17g\n", topology_changes_ + 1, state_.t,
+                  static_cast<int>(crossing_->crossed_tets().size()), static_cast<long>(this->enrichment().num_enrichments()),
+                  static_cast<long>(dofs_.num_free), volume / mesh_volume_ - 1.0, body_mass_ / (scene_.material.density * mesh_volume_) - 1.0,
+                  kinetic_before, account_.kinetic, elastic_before, account_.elastic);
+    cuts_csv_ << row;
+  }
+}
+
+// @sect4{LiverCut::setup_system}
+//
+// Chapter 6's corotated Newmark step on the current model: the unknowns (a piece the cut frees
+// simply falls, as in chapter 6), the mass and the gravity load of the scene's lumping, the
+// tangent's assembler on the model's pattern, and the step with rotations frozen at its start
+// and Jacobi-preconditioned CG started from the last acceleration. The pattern, the mass and the
+// preconditioner change only here, when the topology changes; a step of a run whose cut does not
+// grow reuses them.
+void LiverCut::setup_system() {
+  dofs_ = kerf::make_cut_xfem_dof_map(*model_, held_);
+  const Eigen::SparseMatrix<double> M = kerf::scene_cut_xfem_mass(scene_, *model_, rule_);
+  const Eigen::VectorXd f = kerf::scene_cut_xfem_dynamic_loads(scene_, *model_, boundary_, rule_);
+  const kerf::DofMap all_free = kerf::make_dof_map(model_->num_dof_nodes(), {});
+  tangent_assembler_ = std::make_unique<kerf::SparseAssembler>(model_->assembly_slots(), all_free);
+  const bool corotated = scene_.model == "corotational";
+  const kerf::RotationMethod rotation = kerf::scene_quasi_static_settings(scene_).rotation;
+  system_ = {};
+  system_.M = M;
+  system_.rayleigh_alpha = scene_.time.rayleigh[0];
+  system_.rayleigh_beta = scene_.time.rayleigh[1];
+  system_.dofs = dofs_;
+  system_.load = [f](double) { return f; };
+  const Eigen::Index n = 3 * model_->num_dof_nodes();
+  system_.motion = [n](double) {
+    kerf::PrescribedMotion still;
+    still.u = still.v = still.a = Eigen::VectorXd::Zero(n);
+    return still;
+  };
+  system_.internal_force = [this, rotation, corotated](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
+                                                      Eigen::SparseMatrix<double>* K) {
+    const auto start = std::chrono::steady_clock::now();
+    Eigen::VectorXd unused = Eigen::VectorXd::Zero(u.size());
+    if (K) tangent_assembler_->set_zero();
+    if (corotated) {
+      model_->assemble(u, rotation, tangent, f_int, K ? tangent_assembler_.get() : nullptr, K ? &unused : nullptr);
+    } else {
+      model_->assemble_linear_stiffness(*tangent_assembler_, unused);
+      f_int = tangent_assembler_->matrix() * u;
+    }
+    if (K) *K = tangent_assembler_->matrix();
+    step_times_.assemble += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  system_.elastic_energy = [this, rotation, corotated](const Eigen::VectorXd& u) { return model_->energy(u, corotated, rotation); };
+  kerf::NonlinearNewmarkSettings settings;
+  settings.newmark = {scene_.time.beta, scene_.time.gamma};
+  settings.update = scene_.time.corotation == "newton" ? kerf::RotationUpdate::newton : kerf::RotationUpdate::frozen;
+  settings.tolerance = scene_.time.tolerance;
+  settings.solver = scene_.solver;
+  if (!scene_.solver_given) {
+    settings.solver.type = "cg-jacobi";
+    settings.solver.tolerance = scene_.time.tolerance;
+  }
+  newmark_ = std::make_unique<kerf::NonlinearNewmarkIntegrator>(system_, scene_.time.dt, settings);
+  if (state_.u.size() == 0) {
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+    state_ = newmark_->initial_state(zero, zero, 0.0);
+    account_ = newmark_->start_account(state_);
+  } else {
+    // The same field in the new DOFs: the energies are recomputed from the new matrices and must
+    // equal the old ones (tests/chapter_07 asserts it); the work and dissipation run on.
+    const kerf::EnergyAccount fresh = newmark_->start_account(state_);
+    account_.kinetic = fresh.kinetic;
+    account_.elastic = fresh.elastic;
+  }
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e[3 * v] = 1.0;
+  body_mass_ = e.dot(system_.M * e);
+}
+
+// @sect4{LiverCut::advance_blade}
+//
+// One frame of the blade: pull its edge back, grow the sheet, and ask the semi-progressive cut
+// which tets the new quads have crossed. The blade's life in the tissue:
+// - outside (no sample pulls back): remember its edge; if a sheet was growing, the blade has
+//   left the body: its edge closes the sheet, mapped by the last frame's anchor (a little past
+//   the skin);
+// - entering: a new sheet starts with the edge of the frame before, mapped by this frame's
+//   anchor, so that the sheet begins outside the skin and the cut is open there;
+// - inside: the edge is offered to the sheet.
+// Returns whether a tet became crossed (the topology changed).
+bool LiverCut::advance_blade(const kerf::BladeEdge& world, bool blade_done) {
+  const kerf::ReferenceBlade blade = kerf::pull_back_blade_edge(*model_, *locator_, state_.u, world, scene_.blade.samples,
+                                                                sheet_open_ ? &last_blade_ : nullptr, 1e-9);
+  std::vector<kerf::SweptTriangle> added;
+  if (std::getenv("KERF_DEBUG_BLADE"))
+    std::fprintf(stderr, "t=%.3f inside=%d edge (%.4f %.4f %.4f)-(%.4f %.4f %.4f) ref (%.4f %.4f %.4f)-(%.4f %.4f %.4f)\n", state_.t, blade.samples_inside,
+                 world.start.x(), world.start.y(), world.start.z(), world.end.x(), world.end.y(), world.end.z(), blade.edge.start.x(),
+                 blade.edge.start.y(), blade.edge.start.z(), blade.edge.end.x(), blade.edge.end.y(), blade.edge.end.z());
+  if (!blade.in_tissue()) {
+    if (sheet_open_) {
+      const kerf::BladeEdge closing{last_blade_.anchor.map(world.start), last_blade_.anchor.map(world.end)};
+      added = sheets_.back().offer(closing, true);
+      sheet_open_ = false;
+    }
+    outside_edge_ = world;
+  } else {
+    if (!sheet_open_) {
+      sheets_.emplace_back(quad_length_);
+      const kerf::BladeEdge before = outside_edge_ ? *outside_edge_ : world;
+      sheets_.back().offer({blade.anchor.map(before.start), blade.anchor.map(before.end)});
+      sheet_open_ = true;
+    }
+    added = sheets_.back().offer(blade.edge, blade_done);
+    last_blade_ = blade;
+  }
+  if (added.empty()) return false;
+  return !crossing_->add_swept_triangles(added).empty();
+}
+
+// @sect4{LiverCut::check_state}
+//
+// As in chapter 6: no NaN, and an energy bounded by what was put in.
+void LiverCut::check_state(int step) const {
+  const bool finite = state_.u.allFinite() && state_.v.allFinite() && state_.a.allFinite() && std::isfinite(account_.kinetic) &&
+                      std::isfinite(account_.elastic);
+  const double energy = account_.kinetic + account_.elastic;
+  if (finite && energy <= 100.0 * energy_scale_ + 1e-12) return;
+  std::ostringstream message;
+  message << "the run diverged at step " << step << " (t = " << state_.t << " s): ";
+  if (!finite) message << "the state is not finite";
+  else message << "kinetic + elastic energy " << energy << " J exceeds 100 times the energy put in, " << energy_scale_ << " J";
+  message << "; nothing of this step was written";
+  throw std::runtime_error(message.str());
+}
+
+// @sect4{LiverCut::do_timestep}
+//
+// The blade first (it cuts the body as the last step left it), a rebuild if it crossed a tet,
+// then chapter 6's step.
+void LiverCut::do_timestep(int step, const kerf::BladeEdge& blade, bool blade_done) {
+  using clock = std::chrono::steady_clock;
+  const auto seconds_since = [](clock::time_point start) { return std::chrono::duration<double>(clock::now() - start).count(); };
+  step_times_ = {};
+  auto start = clock::now();
+  const bool crossed = path_ && advance_blade(blade, blade_done);
+  step_times_.blade = seconds_since(start);
+  if (crossed) {
+    start = clock::now();
+    apply_cut();
+    ++topology_changes_;
+    step_times_.topology = seconds_since(start);
+  }
+  start = clock::now();
+  const double work_before = account_.external_work;
+  try {
+    const kerf::NonlinearStepReport report = newmark_->step(state_);
+    newmark_->add_step(account_, state_, report);
+    if (!report.converged) ++newton_failures_;
+  } catch (const std::exception& error) {
+    throw std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(state_.t) + " s): " + error.what());
+  }
+  step_times_.solve = seconds_since(start) - step_times_.assemble;
+  state_.t = step * scene_.time.dt;
+  energy_scale_ += std::abs(account_.external_work - work_before);
+  check_state(step);
+}
+
+// @sect4{LiverCut::draw}
+//
+// The visual surface moved by the field of the piece each vertex lies in, without its triangles
+// that the cut tore (their corners are on both sides), and the walls of the cut.
+void LiverCut::draw(int step) {
+  if (!view_) return;
+  const auto start = std::chrono::steady_clock::now();
+  kerf::TriangleSurface skin = visual_->deform(kerf::xfem_visual_displacement(*model_, state_.u));
+  if (cuts_->num_surfaces() > 0) {
+    std::vector<int> keep = kerf::untorn_triangles(visual_->reference(), cuts_->surface(0));
+    for (int s = 1; s < cuts_->num_surfaces(); ++s) {
+      const std::vector<int> more = kerf::untorn_triangles(visual_->reference(), cuts_->surface(s));
+      std::vector<int> both;
+      std::set_intersection(keep.begin(), keep.end(), more.begin(), more.end(), std::back_inserter(both));
+      keep = std::move(both);
+    }
+    skin = kerf::keep_triangles(skin, keep);
+  }
+  view_->show(skin, kerf::cut_face_surface(*model_, state_.u));
+  if (!options_.interactive) {
+    char name[64];
+    std::snprintf(name, sizeof name, "_frame_%06d.png", step);
+    const std::filesystem::path file = options_.out_dir / "frames" / (scene_.name + name);
+    view_->write_png(file);
+    png_frames_.push_back(file);
+  }
+  step_times_.render += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// @sect4{LiverCut::output_step}
+//
+// energy.csv, timings.csv and the probes' history every step; the pieces into the .pvd series
+// every output.every steps; a frame every render.every steps.
+void LiverCut::output_step(int step) {
+  const auto start = std::chrono::steady_clock::now();
+  char row[512];
+  std::snprintf(row, sizeof row, "%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, state_.t, account_.kinetic, account_.elastic,
+                account_.external_work, account_.dissipated());
+  energy_csv_ << row;
+  if (history_csv_.is_open()) {
+    Eigen::Index outside = 0;
+    const kerf::TetField field = [this](Eigen::Index t, const Eigen::Vector3d& x) { return model_->displacement_at(state_.u, t, x); };
+    const Eigen::MatrixXd values = kerf::evaluate_tet_field_at(mesh_, field, probe_points_, outside);
+    for (Eigen::Index p = 0; p < values.rows(); ++p) {
+      std::snprintf(row, sizeof row, "%d,%.17g,%ld,%.17g,%.17g,%.17g\n", step, state_.t, static_cast<long>(p), values(p, 0), values(p, 1),
+                    values(p, 2));
+      history_csv_ << row;
+    }
+    if (step == 0 && outside > 0) std::cerr << "warning: " << outside << " probes lie outside the mesh; their history is nan\n";
+  }
+  if (step % scene_.output_every == 0 || step == scene_.time.steps) {
+    char name[64];
+    std::snprintf(name, sizeof name, "_pieces_%06d.vtu", step);
+    const std::filesystem::path frame = options_.out_dir / (scene_.name + name);
+    kerf::write_cut_xfem_vtu(frame, *model_, state_.u);
+    frames_.emplace_back(state_.t, frame);
+    kerf::write_pvd(options_.out_dir / (scene_.name + "_pieces.pvd"), frames_);
+  }
+  step_times_.output += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (view_ && scene_.render.every > 0 && (step % scene_.render.every == 0 || step == scene_.time.steps)) draw(step);
+  std::snprintf(row, sizeof row, "%d,%.17g,%ld,%d,%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n", step, state_.t, static_cast<long>(dofs_.num_free),
+                static_cast<int>(crossing_->crossed_tets().size()), step_times_.topology > 0.0 ? 1 : 0, step_times_.blade,
+                step_times_.topology, step_times_.assemble, step_times_.solve, step_times_.render, step_times_.output);
+  timings_csv_ << row;
+}
+
+// @sect4{LiverCut::output_results}
+//
+// The probes where the run ended, the animation, and the run's account.
+void LiverCut::output_results() {
+  if (options_.moments_out) {
+    kerf::write_piece_moments_csv(*options_.moments_out, mesh_, *pieces_, rule_);
+    report("wrote " + options_.moments_out->string());
+  }
+  if (options_.probes_out) {
+    kerf::sample_cut_xfem_probes(*options_.probes_in, *options_.probes_out, *model_, state_.u, &std::cerr);
+    report("wrote " + options_.probes_out->string());
+  }
+  report("wrote " + (options_.out_dir / (scene_.name + "_pieces.pvd")).string() + " (" + std::to_string(frames_.size()) +
+         " frames), energy.csv and timings.csv in " + options_.out_dir.string());
+  if (!png_frames_.empty()) {
+    report("wrote " + std::to_string(png_frames_.size()) + " PNG frames in " + (options_.out_dir / "frames").string());
+    if (scene_.render.animation) {
+      const std::filesystem::path film = options_.out_dir / (scene_.name + ".png");
+      // Played at the simulation's pace: a frame every render.every steps of dt.
+      const int delay = std::clamp(static_cast<int>(std::lround(1000.0 * scene_.render.every * scene_.time.dt)), 1, 65535);
+      kerf::write_animated_png(png_frames_, film, delay);
+      report("wrote " + film.string() + " (animated PNG, " + std::to_string(png_frames_.size()) + " frames)");
+    }
+  }
+}
+
+// @sect4{LiverCut::run}
+//
+// Mesh, blade, pictures, the uncut model, then the steps, each with its blade frame; a progress
+// line about once a second, and at the end where the time went.
+void LiverCut::run() {
+  using clock = std::chrono::steady_clock;
+  const auto seconds_since = [](clock::time_point start) { return std::chrono::duration<double>(clock::now() - start).count(); };
+  auto start = clock::now();
+  make_mesh();
+  setup_blade();
+  setup_visual(scene_.render.every > 0, false);
+  rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
+  apply_cut();
+  report("system: " + std::to_string(dofs_.num_free) + " unknowns before the cut; mass " + std::to_string(body_mass_) + " kg (" +
+         scene_.time.mass + ")");
+  if (path_) {
+    // A blade that starts in the tissue would cut from nowhere: its path must begin outside.
+    const kerf::ReferenceBlade first =
+        kerf::pull_back_blade_edge(*model_, *locator_, state_.u, path_->edge_at(0.0), scene_.blade.samples, nullptr, 1e-9);
+    if (first.in_tissue())
+      throw kerf::InputError(scene_.source.string(), "blade.path",
+                             "the blade's edge starts inside the body (" + std::to_string(first.samples_inside) + " of " +
+                                 std::to_string(scene_.blade.samples) + " samples): start it outside, so that the cut opens through the skin");
+  }
+  report("setup: " + std::to_string(seconds_since(start)) + " s");
+
+  std::filesystem::create_directories(options_.out_dir);
+  const auto open = [](std::ofstream& file, const std::filesystem::path& path, const char* header) {
+    file.open(path);
+    if (!file) throw kerf::InputError(path.string(), "write", "cannot open the file");
+    file << header;
+  };
+  open(energy_csv_, options_.out_dir / "energy.csv", "step,t,kinetic,elastic,external_work,dissipated\n");
+  open(cuts_csv_, options_.out_dir / "cuts.csv",
+       "change,t,crossed_tets,enrichments,unknowns,volume_error,mass_error,kinetic_before,kinetic_after,elastic_before,elastic_after\n");
+  open(timings_csv_, options_.out_dir / "timings.csv",
+       "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n");
+  if (options_.probes_history) {
+    probe_points_ = kerf::read_probes_csv(*options_.probes_in);
+    open(history_csv_, *options_.probes_history, "step,t,probe,ux,uy,uz\n");
+  }
+  energy_scale_ = account_.kinetic + account_.elastic;
+  output_step(0);
+
+  start = clock::now();
+  auto last_line = start;
+  const int steps = scene_.time.steps;
+  for (int step = 1; step <= steps; ++step) {
+    const double t = step * scene_.time.dt;
+    const kerf::BladeEdge blade = path_ ? path_->edge_at(t) : kerf::BladeEdge{};
+    do_timestep(step, blade, path_ && t >= path_->end_time());
+    output_step(step);
+    const double simulated = step_times_.blade + step_times_.topology + step_times_.assemble + step_times_.solve;
+    max_step_seconds_ = std::max(max_step_seconds_, simulated);
+    if (step_times_.topology > 0.0) max_topology_step_seconds_ = std::max(max_topology_step_seconds_, simulated);
+    for (auto [total, part] : {std::pair{&total_times_.blade, step_times_.blade}, {&total_times_.topology, step_times_.topology},
+                               {&total_times_.assemble, step_times_.assemble}, {&total_times_.solve, step_times_.solve},
+                               {&total_times_.render, step_times_.render}, {&total_times_.output, step_times_.output}})
+      *total += part;
+    if (!options_.quiet && (seconds_since(last_line) >= 1.0 || step == steps)) {
+      const double rate = step / seconds_since(start);
+      std::ostringstream line;
+      line.precision(3);
+      line << "step " << step << "/" << steps << " (t = " << state_.t << " s): " << crossing_->crossed_tets().size() << " tets cut, "
+           << dofs_.num_free << " unknowns; " << rate << " steps/s, about " << (steps - step) / rate << " s left";
+      report(line.str());
+      last_line = clock::now();
+    }
+  }
+  const double wall = seconds_since(start);
+  std::ostringstream line;
+  line.precision(3);
+  const double simulated = total_times_.blade + total_times_.topology + total_times_.assemble + total_times_.solve;
+  line << "stepped " << steps << " steps in " << wall << " s; per step: " << 1e3 * simulated / steps << " ms simulating (blade "
+       << 1e3 * total_times_.blade / steps << ", topology " << 1e3 * total_times_.topology / steps << ", assemble "
+       << 1e3 * total_times_.assemble / steps << ", solve " << 1e3 * total_times_.solve / steps << "), render "
+       << 1e3 * total_times_.render / steps << ", output " << 1e3 * total_times_.output / steps << "; slowest step "
+       << 1e3 * max_step_seconds_ << " ms, slowest topology step " << 1e3 * max_topology_step_seconds_ << " ms";
+  report(line.str());
+  std::ostringstream cut;
+  cut.precision(4);
+  cut << "cut: " << crossing_->crossed_tets().size() << " tets crossed, " << topology_changes_ << " topology changes, "
+      << sheets_.size() << " sheets of " << (sheets_.empty() ? 0 : sheets_.back().num_triangles()) << " triangles, "
+      << enrichment().num_enrichments() << " enrichments; energy: kinetic " << account_.kinetic << " J, elastic " << account_.elastic
+      << " J, work " << account_.external_work << " J, dissipated " << account_.dissipated() << " J";
+  report(cut.str());
+  if (newton_failures_ > 0)
+    std::cerr << "warning: " << scene_.source.string() << ": time.tolerance: the Newton iteration missed " << scene_.time.tolerance << " in "
+              << newton_failures_ << " steps\n";
+  output_results();
+}
+
+// @sect4{LiverCut::run_interactive}
+//
+// The same steps in a window: a VTK timer fires every dt, and the blade is the mouse. While the
+// left button is held, the edge stands along the view direction through the point under the
+// cursor: from 3 cm in front of the organ's surface to the scene's blade depth behind it (the
+// first keyframe's edge length), so the cut follows the cursor across the picture. Elsewhere the
+// camera turns with the mouse as in any VTK window. Each step prints its time.
+void LiverCut::run_interactive() {
+  make_mesh();
+  setup_blade();
+  setup_visual(true, true);
+  rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
+  apply_cut();
+  const double depth = path_ ? (path_->keyframes().front().edge.end - path_->keyframes().front().edge.start).norm() : 0.06;
+  if (!path_) quad_length_ = 0.002;
+  std::filesystem::create_directories(options_.out_dir);
+  timings_csv_.open(options_.out_dir / "timings.csv");
+  timings_csv_ << "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n";
+  energy_scale_ = 1e-12;
+
+  // The interactor alone, without one of VTK's interactor styles: their module (InteractionStyle)
+  // would bring MPI's C bindings into the build with Debian's VTK 9.1 (CMakeLists.txt). The two
+  // things a style would do, turn the camera and close on q, are a few lines below.
+  vtkRenderWindowInteractor* interactor = vtkRenderWindowInteractor::New();
+  interactor->SetRenderWindow(&view_->window());
+  interactor->SetInteractorStyle(nullptr);
+  interactor->Initialize();
+  struct Mouse {
+    bool cutting = false, turning = false;
+    int x = 0, y = 0;
+  } mouse;
+  int step = 0;
+  vtkNew<vtkCellPicker> picker;
+  picker->SetTolerance(0.0005);
+  // The mouse: the left button with Shift held cuts; without Shift it turns the camera.
+  const auto on_event = [&](unsigned long event) {
+    int x = 0, y = 0;
+    interactor->GetEventPosition(x, y);
+    if (event == vtkCommand::LeftButtonPressEvent) (interactor->GetShiftKey() ? mouse.cutting : mouse.turning) = true;
+    if (event == vtkCommand::LeftButtonReleaseEvent) mouse.cutting = mouse.turning = false;
+    if (event == vtkCommand::MouseMoveEvent && mouse.turning) {
+      vtkCamera* camera = view_->renderer().GetActiveCamera();
+      camera->Azimuth(-0.4 * (x - mouse.x));
+      camera->Elevation(-0.4 * (y - mouse.y));
+      camera->OrthogonalizeViewUp();
+      view_->renderer().ResetCameraClippingRange();
+    }
+    if (event == vtkCommand::KeyPressEvent && interactor->GetKeyCode() == 'q') interactor->TerminateApp();
+    mouse.x = x;
+    mouse.y = y;
+  };
+  const auto on_timer = [&] {
+    ++step;
+    kerf::BladeEdge edge;
+    bool have_edge = false;
+    if (mouse.cutting && picker->Pick(mouse.x, mouse.y, 0.0, &view_->renderer())) {
+      double picked[3], camera[3];
+      picker->GetPickPosition(picked);
+      view_->renderer().GetActiveCamera()->GetPosition(camera);
+      const Eigen::Vector3d p(picked[0], picked[1], picked[2]), c(camera[0], camera[1], camera[2]);
+      const Eigen::Vector3d d = (p - c).normalized();
+      edge = {p - 0.03 * d, p + depth * d};
+      have_edge = true;
+    } else if (mouse.cutting) {
+      // The cursor left the organ: the blade is outside, far beyond the skin.
+      double camera[3];
+      view_->renderer().GetActiveCamera()->GetPosition(camera);
+      const Eigen::Vector3d c(camera[0], camera[1], camera[2]);
+      edge = {c, c + Eigen::Vector3d(0, 0, 1e-3)};
+      have_edge = true;
+    }
+    if (have_edge && !path_) path_ = std::make_unique<kerf::BladePath>(std::vector<kerf::BladeKeyframe>{{0.0, edge}, {1.0, edge}});
+    const auto start = std::chrono::steady_clock::now();
+    do_timestep(step, edge, false);
+    // Without the mouse the blade is away: a sheet still open closes.
+    if (!have_edge) sheet_open_ = false;
+    draw(step);
+    view_->window().Render();
+    const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("step %d (t = %.2f s): %.1f ms (blade %.2f, topology %.1f, assemble %.1f, solve %.1f, render %.1f), %zu tets cut\n", step,
+                state_.t, ms, 1e3 * step_times_.blade, 1e3 * step_times_.topology, 1e3 * step_times_.assemble, 1e3 * step_times_.solve,
+                1e3 * step_times_.render, crossing_->crossed_tets().size());
+    std::fflush(stdout);
+    output_step(step);
+  };
+  std::function<void(unsigned long)> event_handler = on_event;
+  std::function<void()> timer_handler = on_timer;
+  vtkNew<vtkCallbackCommand> events, timer;
+  events->SetClientData(&event_handler);
+  events->SetCallback([](vtkObject*, unsigned long id, void* data, void*) { (*static_cast<std::function<void(unsigned long)>*>(data))(id); });
+  timer->SetClientData(&timer_handler);
+  timer->SetCallback([](vtkObject*, unsigned long, void* data, void*) { (*static_cast<std::function<void()>*>(data))(); });
+  for (unsigned long id : {vtkCommand::LeftButtonPressEvent, vtkCommand::LeftButtonReleaseEvent, vtkCommand::MouseMoveEvent,
+                           vtkCommand::KeyPressEvent})
+    interactor->AddObserver(id, events, 1.0);
+  interactor->AddObserver(vtkCommand::TimerEvent, timer);
+  interactor->CreateRepeatingTimer(static_cast<unsigned long>(std::max(1.0, 1e3 * scene_.time.dt)));
+  view_->window().Render();
+  if (!options_.events) {
+    report("interactive: hold Shift and drag with the left button to cut; drag without Shift to turn; q closes the window");
+    interactor->Start();
+  } else {
+    // A script instead of a hand (the test of this mode): each row is an event that the
+    // interactor receives before the timer of its step fires, as the window system would deliver
+    // it; the run ends after the script's last step.
+    const std::vector<ScriptedEvent> script = read_events_csv(*options_.events);
+    std::size_t next = 0;
+    const int last = script.empty() ? 0 : script.back().step;
+    for (int tick = 1; tick <= last; ++tick) {
+      for (; next < script.size() && script[next].step == tick; ++next) {
+        const ScriptedEvent& e = script[next];
+        interactor->SetEventInformation(e.x, e.y, 0, e.shift ? 1 : 0, e.event == "key_q" ? 'q' : 0);
+        interactor->InvokeEvent(e.event == "press"     ? vtkCommand::LeftButtonPressEvent
+                                : e.event == "release" ? vtkCommand::LeftButtonReleaseEvent
+                                : e.event == "move"    ? vtkCommand::MouseMoveEvent
+                                                       : vtkCommand::KeyPressEvent);
+      }
+      interactor->InvokeEvent(vtkCommand::TimerEvent);
+    }
+    report("played " + std::to_string(script.size()) + " events over " + std::to_string(last) + " steps; " +
+           std::to_string(crossing_->crossed_tets().size()) + " tets cut");
+  }
+  interactor->Delete();
+}
+
+} // namespace chapter07
+
+// @sect3{The main function}
+//
+// As in chapter 6, with --tets and --interactive, and the demo scene when no --scene is given.
+int main(int argc, char** argv) {
+  const std::string usage =
+      "usage: 07_liver [--scene FILE.json] [--tets N] [--interactive [--events FILE.csv]] [--probes IN.csv [--probes-out OUT.csv] [--probes-history FILE.csv]]\n"
+      "                [--moments-out FILE.csv] [--out DIR] [--quiet]\n"
+      "Cuts a liver with a moving blade while it moves under gravity: semi-progressive XFEM cuts stored in the\n"
+      "reference configuration, corotational Newmark dynamics, PNG frames and an animated PNG (Kerf, chapter 7).\n"
+      "  --scene FILE.json         the scene, with a \"blade\" field (default: the demo, examples/07_liver_cut.json)\n"
+      "  --tets N                  the liver's size in tets (default: the scene's, 10000 in the demo)\n"
+      "  --interactive             a window in which Shift + left drag cuts (needs a display)\n"
+      "  --events FILE.csv         with --interactive: play these mouse events (header step,event,x,y,shift), then stop\n"
+      "  --probes IN.csv           points (header x,y,z) at which to write the displacement ...\n"
+      "  --probes-out OUT.csv      ... at the last step (header x,y,z,ux,uy,uz)\n"
+      "  --probes-history FILE.csv ... at every step from 0 (header step,t,probe,ux,uy,uz; probe 0-based)\n"
+      "  --moments-out FILE.csv    the moments of every piece of every cut tet at the last step, as in chapter 4\n"
+      "  --out DIR                 where energy.csv, timings.csv, the .vtu frames, their .pvd and the PNG frames go (default: output)\n"
+      "  --quiet                   no progress lines\n"
+      "  --help                    this text\n"
+      "PNG frames need an X display: run under xvfb-run -a without one, or set \"render\": {\"every\": 0}.\n";
+  return kerf::run_guarded(
+      argc, argv, "07_liver", usage,
+      [](const kerf::CommandLine& options) {
+        const kerf::Scene scene = options.scene ? kerf::read_scene_file(*options.scene)
+                                                : kerf::parse_scene(chapter07::demo_scene, "demo scene", ".");
+        kerf::require_features(scene, kerf::SceneFeatures{.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true,
+                                                          .crack_tip = true, .organ = true});
+        if (!scene.cuts.empty())
+          throw kerf::InputError(scene.source.string(), "cuts", "07_liver's cuts are made by the \"blade\"; a fixed cut is chapter 6's (06_newmark)");
+        if (scene.time.integrator != "newmark")
+          throw kerf::InputError(scene.source.string(), "time.integrator", "07_liver steps with \"newmark\" (chapter 6's corotated step)");
+        if (!(scene.material.density > 0.0))
+          throw kerf::InputError(scene.source.string(), "material.density", "dynamics needs a positive density (kg/m^3)");
+        if (!scene.blade.given && !options.interactive)
+          throw kerf::InputError(scene.source.string(), "blade", "expected a \"blade\" field with its \"path\": 07_liver cuts with it");
+        chapter07::LiverCut problem(scene, options);
+        if (options.interactive) problem.run_interactive();
+        else problem.run();
+      },
+      kerf::CommandLineFeatures{.moments_out = true, .probes_history = true, .organ = true});
+}

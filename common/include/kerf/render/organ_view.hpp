@@ -1,0 +1,57 @@
+/// @file organ_view.hpp
+/// @brief Chapter 7's picture: the organ's visual surface and the walls of its cut, smooth-shaded, from a camera that stays put; off-screen for the frames, in a window for the interactive mode.
+///
+/// render_surface_image (surface_image.hpp) makes a window per picture and fits the camera to
+/// what it shows. A film needs the opposite: one window for all frames, so a frame costs a
+/// render and a read-back and not a new OpenGL context, and one camera, fitted once to the organ
+/// at rest, so the organ moves in the picture rather than the picture around the organ.
+#pragma once
+
+#include "kerf/mesh/triangle_surface.hpp"
+#include "kerf/render/camera_view.hpp"
+
+#include <vtkSmartPointer.h>
+
+#include <filesystem>
+#include <memory>
+
+class vtkImageData;
+class vtkRenderWindow;
+class vtkRenderer;
+
+namespace kerf {
+
+/// How the organ is drawn.
+struct OrganViewSettings {
+  int width = 960, height = 720; ///< pixels
+  CameraView camera;             ///< fitted to the organ at rest, then fixed
+  bool on_screen = false;        ///< a window on the display (the interactive mode) instead of off-screen
+};
+
+/// One render window showing two surfaces: the organ's skin (liver red) and the cut's walls
+/// (the paler red of cut tissue), both smooth-shaded.
+class OrganView {
+public:
+  /// @param at_rest  the skin before anything moves: the camera is fitted to it once
+  /// @param settings size, camera, on or off screen
+  /// @throws InputError `environment: DISPLAY: ...` without a display (VTK 9.1 draws through X)
+  OrganView(const TriangleSurface& at_rest, const OrganViewSettings& settings);
+  ~OrganView();
+  OrganView(const OrganView&) = delete;
+  OrganView& operator=(const OrganView&) = delete;
+  /// Replaces what is shown (the camera stays).
+  void show(const TriangleSurface& skin, const TriangleSurface& cut_walls);
+  /// Draws, and returns the picture: RGB, row 0 at the bottom (VTK's order).
+  vtkSmartPointer<vtkImageData> picture();
+  /// Draws and writes the picture as a PNG.
+  void write_png(const std::filesystem::path& file);
+  /// The window and its renderer, for the interactive mode's interactor.
+  vtkRenderWindow& window();
+  vtkRenderer& renderer();
+
+private:
+  struct Data;
+  std::unique_ptr<Data> data_;
+};
+
+} // namespace kerf

@@ -1,0 +1,97 @@
+#include "kerf/render/organ_view.hpp"
+
+#include "kerf/app/input_error.hpp"
+#include "kerf/render/surface_image.hpp"
+#include "kerf/render/triangle_surface_polydata.hpp"
+#include "kerf/render/write_png.hpp"
+
+#include <vtkActor.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <cstdlib>
+
+namespace kerf {
+
+struct OrganView::Data {
+  vtkNew<vtkPolyDataMapper> skin_mapper, wall_mapper;
+  vtkNew<vtkActor> skin, walls;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+};
+
+namespace {
+
+// Colours of liver tissue: the capsule's dark red-brown, and the paler parenchyma a cut exposes.
+constexpr double skin_colour[3] = {0.55, 0.16, 0.12};
+constexpr double wall_colour[3] = {0.86, 0.47, 0.42};
+
+void look(vtkActor& actor, const double colour[3]) {
+  actor.GetProperty()->SetColor(colour[0], colour[1], colour[2]);
+  actor.GetProperty()->SetAmbient(0.15);
+  actor.GetProperty()->SetDiffuse(0.8);
+  actor.GetProperty()->SetSpecular(0.25);
+  actor.GetProperty()->SetSpecularPower(30);
+}
+
+} // namespace
+
+OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& settings) : data_(std::make_unique<Data>()) {
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+    throw InputError("environment", "DISPLAY", "no X display to draw on (VTK 9.1 draws through X): run under xvfb-run -a");
+  data_->skin_mapper->ScalarVisibilityOff();
+  data_->wall_mapper->ScalarVisibilityOff();
+  data_->skin->SetMapper(data_->skin_mapper);
+  data_->walls->SetMapper(data_->wall_mapper);
+  look(*data_->skin, skin_colour);
+  look(*data_->walls, wall_colour);
+  // The inside of the skin shows through the gap of an opened cut: the back faces get the
+  // walls' colour, darker, so that a look into the wound reads as tissue.
+  vtkNew<vtkProperty> inside;
+  inside->SetColor(0.6 * wall_colour[0], 0.6 * wall_colour[1], 0.6 * wall_colour[2]);
+  data_->skin->SetBackfaceProperty(inside);
+  data_->renderer->AddActor(data_->skin);
+  data_->renderer->AddActor(data_->walls);
+  const auto& [r, g, b] = picture_background;
+  data_->renderer->SetBackground(r / 255.0, g / 255.0, b / 255.0);
+  data_->window->SetOffScreenRendering(settings.on_screen ? 0 : 1);
+  data_->window->SetSize(settings.width, settings.height);
+  data_->window->AddRenderer(data_->renderer);
+  show(at_rest, TriangleSurface{});
+  place_camera(*data_->renderer, settings.camera);
+}
+
+OrganView::~OrganView() = default;
+
+void OrganView::show(const TriangleSurface& skin, const TriangleSurface& cut_walls) {
+  data_->skin_mapper->SetInputData(triangle_surface_polydata(skin, Shading::smooth));
+  data_->wall_mapper->SetInputData(triangle_surface_polydata(cut_walls, Shading::faceted));
+  data_->walls->SetVisibility(cut_walls.num_triangles() > 0);
+  data_->renderer->ResetCameraClippingRange();
+}
+
+vtkSmartPointer<vtkImageData> OrganView::picture() {
+  data_->window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(data_->window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkSmartPointer<vtkImageData> image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(grab->GetOutput());
+  return image;
+}
+
+void OrganView::write_png(const std::filesystem::path& file) { kerf::write_png(file, *picture()); }
+
+vtkRenderWindow& OrganView::window() { return *data_->window; }
+vtkRenderer& OrganView::renderer() { return *data_->renderer; }
+
+} // namespace kerf
