@@ -82,6 +82,7 @@
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -235,6 +236,7 @@ private:
   std::optional<kerf::BladeEdge> outside_edge_; // the blade's last world edge before it entered
   kerf::ReferenceBlade last_blade_;
   std::unique_ptr<kerf::SemiProgressiveCut> crossing_;
+  Eigen::AlignedBox3d grown_since_rebuild_; // the box of the sheets' triangles added since the model was built
   int topology_changes_ = 0;
 
   // The model of the current cut (rebuilt by apply_cut), and what it refers to.
@@ -365,7 +367,11 @@ void LiverCut::apply_cut() {
   for (const kerf::CutSheet& sheet : sheets_)
     if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
   auto cuts = std::make_unique<kerf::CutSurfaces>(std::move(surfaces));
-  auto pieces = std::make_unique<kerf::MeshPieces>(kerf::cut_mesh_into_pieces(mesh_, *cuts, neighbours_));
+  // Only the tets near the quads added since the last rebuild can have new pieces: the others
+  // keep theirs (recut_mesh_into_pieces).
+  auto pieces = std::make_unique<kerf::MeshPieces>(pieces_ ? kerf::recut_mesh_into_pieces(mesh_, *cuts, *pieces_, grown_since_rebuild_)
+                                                           : kerf::cut_mesh_into_pieces(mesh_, *cuts, neighbours_));
+  grown_since_rebuild_.setEmpty();
   std::unique_ptr<kerf::SceneCrackTip> crack_tip;
   std::unique_ptr<kerf::SurfaceEnrichment> enrichment;
   if (scene_.crack_tip.given) crack_tip = std::make_unique<kerf::SceneCrackTip>(scene_, mesh_, *pieces, *cuts, nullptr);
@@ -486,10 +492,6 @@ bool LiverCut::advance_blade(const kerf::BladeEdge& world, bool blade_done) {
   const kerf::ReferenceBlade blade = kerf::pull_back_blade_edge(*model_, *locator_, state_.u, world, scene_.blade.samples,
                                                                 sheet_open_ ? &last_blade_ : nullptr, 1e-9);
   std::vector<kerf::SweptTriangle> added;
-  if (std::getenv("KERF_DEBUG_BLADE"))
-    std::fprintf(stderr, "t=%.3f inside=%d edge (%.4f %.4f %.4f)-(%.4f %.4f %.4f) ref (%.4f %.4f %.4f)-(%.4f %.4f %.4f)\n", state_.t, blade.samples_inside,
-                 world.start.x(), world.start.y(), world.start.z(), world.end.x(), world.end.y(), world.end.z(), blade.edge.start.x(),
-                 blade.edge.start.y(), blade.edge.start.z(), blade.edge.end.x(), blade.edge.end.y(), blade.edge.end.z());
   if (!blade.in_tissue()) {
     if (sheet_open_) {
       const kerf::BladeEdge closing{last_blade_.anchor.map(world.start), last_blade_.anchor.map(world.end)};
@@ -508,6 +510,8 @@ bool LiverCut::advance_blade(const kerf::BladeEdge& world, bool blade_done) {
     last_blade_ = blade;
   }
   if (added.empty()) return false;
+  for (const kerf::SweptTriangle& triangle : added)
+    for (const Eigen::Vector3d& corner : triangle) grown_since_rebuild_.extend(corner);
   return !crossing_->add_swept_triangles(added).empty();
 }
 

@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <optional>
+#include <stdexcept>
 #include <cmath>
 #include <limits>
 
@@ -100,7 +102,54 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts) {
   return cut_mesh_into_pieces(mesh, cuts, std::make_shared<const TetNeighbours>(tet_neighbours(mesh)));
 }
 
+namespace {
+
+// The pieces of every tet, from `pieces_of(t, X)` (nullptr: no cut triangle meets it), then the
+// counts and the glue: the two steps of cut_mesh_into_pieces and recut_mesh_into_pieces.
+template <class PiecesOf>
+MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours, PiecesOf pieces_of);
+
+} // namespace
+
 MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours) {
+  std::optional<TetPieces> split;
+  return pieces_and_glue(mesh, cuts, std::move(neighbours), [&](Eigen::Index, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
+    const std::vector<CutTriangle> triangles = cuts.triangles_meeting_tet(X);
+    if (triangles.empty()) return nullptr;
+    split = split_tet_by_triangles(X, triangles);
+    return &*split;
+  });
+}
+
+MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, const MeshPieces& previous, const Eigen::AlignedBox3d& changed) {
+  if (previous.entry.size() != static_cast<std::size_t>(mesh.num_tets()))
+    throw std::invalid_argument("recut_mesh_into_pieces: the previous pieces are of another mesh");
+  // The box a little larger than asked: a triangle's box and a tet's are compared in doubles,
+  // and a triangle that touches a tet only at a corner must not be missed by round-off.
+  Eigen::AlignedBox3d grown = changed;
+  if (!grown.isEmpty()) {
+    const double margin = 1e-9 * std::max(1.0, grown.diagonal().norm());
+    grown.min().array() -= margin;
+    grown.max().array() += margin;
+  }
+  std::optional<TetPieces> split;
+  return pieces_and_glue(mesh, cuts, previous.neighbours, [&](Eigen::Index t, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
+    const Eigen::AlignedBox3d box(X.colwise().minCoeff().transpose(), X.colwise().maxCoeff().transpose());
+    if (!box.intersects(grown)) {
+      const int e = previous.entry[static_cast<std::size_t>(t)];
+      return e < 0 ? nullptr : &previous.tets[static_cast<std::size_t>(e)];
+    }
+    const std::vector<CutTriangle> triangles = cuts.triangles_meeting_tet(X);
+    if (triangles.empty()) return nullptr;
+    split = split_tet_by_triangles(X, triangles);
+    return &*split;
+  });
+}
+
+namespace {
+
+template <class PiecesOf>
+MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours, PiecesOf pieces_of) {
   MeshPieces result;
   result.neighbours = std::move(neighbours);
   const Eigen::Index T = mesh.num_tets();
@@ -109,16 +158,16 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, st
   std::vector<Eigen::Index> last_tet(static_cast<std::size_t>(cuts.num_surfaces()), -1);
   for (Eigen::Index t = 0; t < T; ++t) {
     const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
-    const std::vector<CutTriangle> triangles = cuts.triangles_meeting_tet(X);
-    if (triangles.empty()) continue;
-    for (const CutTriangle& triangle : triangles) {
+    const TetPieces* split = pieces_of(t, X);
+    if (!split) continue;
+    for (const CutTriangle& triangle : split->triangles) {
       const auto s = static_cast<std::size_t>(triangle.surface);
       if (last_tet[s] != t) ++result.tets_per_surface[s];
       last_tet[s] = t;
     }
     result.entry[static_cast<std::size_t>(t)] = static_cast<int>(result.tets.size());
     result.entry_tet.push_back(static_cast<int>(t));
-    result.tets.push_back(split_tet_by_triangles(X, triangles));
+    result.tets.push_back(*split);
   }
   for (Eigen::Index t = 0; t < T; ++t) ++result.state_counts[static_cast<std::size_t>(result.state(t))];
 
@@ -174,5 +223,7 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, st
   }
   return result;
 }
+
+} // namespace
 
 } // namespace kerf

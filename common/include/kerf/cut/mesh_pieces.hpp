@@ -8,6 +8,7 @@
 #include "kerf/mesh/tet_neighbours.hpp"
 
 #include <array>
+#include <Eigen/Geometry>
 #include <memory>
 #include <vector>
 
@@ -61,5 +62,16 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts);
 
 /// The same with the mesh's adjacency given: tet_neighbours(mesh), made once for the mesh.
 MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours);
+
+/// The same for a cut that has grown: `previous` holds the pieces of the same mesh by an earlier
+/// state of the same cuts, whose triangles `cuts` keeps, in the same surfaces with the same
+/// numbers, and adds to. A tet whose box misses `changed` (a box holding every triangle added
+/// since) meets the same triangles as before, so its pieces are the previous ones and are
+/// copied; only the others are cut again. The glue is found anew for every tet with an entry
+/// (it is cheap: faces of cut tets only). The result is that of cut_mesh_into_pieces, at the
+/// cost of the changed region instead of the whole mesh: chapter 7 rebuilds after every tet
+/// the blade crosses. Reuses previous.neighbours.
+MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, const MeshPieces& previous,
+                                  const Eigen::AlignedBox3d& changed);
 
 } // namespace kerf
