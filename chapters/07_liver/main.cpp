@@ -57,6 +57,7 @@
 #include "kerf/mesh/liver_mesh.hpp"
 #include "kerf/mesh/liver_shape.hpp"
 #include "kerf/mesh/point_locator.hpp"
+#include "kerf/mesh/read_surface.hpp"
 #include "kerf/mesh/tet_neighbours.hpp"
 #include "kerf/mesh/tet_quality.hpp"
 #include "kerf/render/organ_view.hpp"
@@ -333,10 +334,13 @@ void LiverCut::setup_blade() {
 //
 // The picture's surface: for the built-in liver a fine mesh of its implicit surface (Mesh_3's
 // surface mesher, triangles of render.visual_size), several times finer than the tets' boundary;
-// for a mesh read from a file, its own boundary. Embedded once in the reference tets.
+// for a mesh read from a file, the scene's render.surface (SOFA's liver comes with a smooth one),
+// or else the mesh's own boundary. Embedded once in the reference tets.
 void LiverCut::setup_visual(bool need_view, bool on_screen) {
   kerf::TriangleSurface surface;
-  if (scene_.mesh.is_liver) {
+  if (!scene_.render.surface.empty()) {
+    surface = kerf::read_surface(scene_.render.surface, scene_.render.surface_scale, &std::cerr);
+  } else if (scene_.mesh.is_liver) {
     surface = kerf::implicit_surface_mesh(kerf::liver_phi, kerf::liver_centre(), kerf::liver_bounding_radius(),
                                           kerf::implicit_surface_sizing(scene_.render.visual_size));
   } else {

@@ -494,11 +494,11 @@ BladeSpec read_blade(const ObjectReader& r) {
 }
 
 /// "render" (chapter 7): the PNG frames of the visual surface and their camera.
-RenderSpec read_render(const ObjectReader& r) {
+RenderSpec read_render(const ObjectReader& r, const std::filesystem::path& base) {
   RenderSpec spec;
   if (!r.has("render")) return spec;
   ObjectReader o(r.at("render"), "render", r.file());
-  o.allow_only({"every", "width", "height", "camera", "visual_size", "animation"});
+  o.allow_only({"every", "width", "height", "camera", "visual_size", "animation", "surface", "surface_scale"});
   spec.every = o.integer("every", spec.every);
   if (spec.every < 0) o.fail("render.every", "expected an integer >= 0 (0: no frames)");
   spec.width = o.integer("width", spec.width);
@@ -508,6 +508,14 @@ RenderSpec read_render(const ObjectReader& r) {
   spec.visual_size = o.number("visual_size", spec.visual_size);
   if (!(spec.visual_size > 0.0)) o.fail("render.visual_size", "expected a positive length (m)");
   spec.animation = o.boolean("animation", spec.animation);
+  if (o.has("surface")) {
+    const std::filesystem::path file = o.text("surface", "");
+    if (file.empty()) o.fail("render.surface", "expected a non-empty path");
+    spec.surface = file.is_absolute() ? file : base / file;
+    if (!std::filesystem::is_regular_file(spec.surface)) o.fail("render.surface", "no such file: " + spec.surface.string());
+  }
+  spec.surface_scale = o.number("surface_scale", spec.surface_scale);
+  if (!(spec.surface_scale > 0.0)) o.fail("render.surface_scale", "expected a positive number");
   if (o.has("camera")) {
     ObjectReader c(o.at("camera"), "render.camera", r.file());
     c.allow_only({"azimuth", "elevation", "zoom"});
@@ -602,7 +610,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& sou
   scene.solver = read_solver(r);
   scene.solver_given = r.has("solver");
   scene.blade = read_blade(r);
-  scene.render = read_render(r);
+  scene.render = read_render(r, base);
   scene.render_given = r.has("render");
   return scene;
 }

@@ -148,6 +148,8 @@ struct RenderSpec {
   int width = 960, height = 720; ///< pixels
   double azimuth = -60, elevation = 35, zoom = 1.25; ///< the fixed camera (camera_view.hpp), degrees
   double visual_size = 0.003; ///< triangle size of the liver's visual surface (m)
+  std::filesystem::path surface; ///< a visual surface file for a mesh read from a file (read_surface; empty: the mesh's boundary)
+  double surface_scale = 1.0;    ///< what the surface file's coordinates are multiplied by
   bool animation = true;     ///< assemble the frames into an animated PNG
 };
 
