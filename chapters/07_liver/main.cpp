@@ -194,6 +194,25 @@ std::vector<ScriptedEvent> read_events_csv(const std::filesystem::path& file) {
   return events;
 }
 
+// What a change of topology spends its time on (rebuilds.csv), stage by stage.
+struct RebuildTimes {
+  double pieces = 0.0, enrichment = 0.0, model = 0.0, transfer = 0.0, mass = 0.0, loads = 0.0, pattern = 0.0, integrator = 0.0;
+};
+
+// Seconds since the last call (or since it was made).
+class Lap {
+public:
+  double operator()() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 // @sect3{The LiverCut class}
 //
 // Chapter 6's skeleton with apply_cut called again whenever the blade has crossed a tet.
@@ -266,7 +285,8 @@ private:
   StepTimes step_times_, total_times_;
   double max_step_seconds_ = 0.0, max_topology_step_seconds_ = 0.0;
   Eigen::MatrixXd probe_points_;
-  std::ofstream energy_csv_, history_csv_, timings_csv_, cuts_csv_;
+  std::ofstream energy_csv_, history_csv_, timings_csv_, cuts_csv_, rebuilds_csv_;
+  RebuildTimes rebuild_times_;
   double mesh_volume_ = 0.0; // the uncut mesh's, sum of |det J| / 6
   std::vector<std::pair<double, std::filesystem::path>> frames_;
 };
@@ -370,18 +390,22 @@ void LiverCut::apply_cut() {
   std::vector<kerf::TriangleSurface> surfaces;
   for (const kerf::CutSheet& sheet : sheets_)
     if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
+  Lap lap;
   auto cuts = std::make_unique<kerf::CutSurfaces>(std::move(surfaces));
   // Only the tets near the quads added since the last rebuild can have new pieces: the others
   // keep theirs (recut_mesh_into_pieces).
   auto pieces = std::make_unique<kerf::MeshPieces>(pieces_ ? kerf::recut_mesh_into_pieces(mesh_, *cuts, *pieces_, grown_since_rebuild_)
                                                            : kerf::cut_mesh_into_pieces(mesh_, *cuts, neighbours_));
   grown_since_rebuild_.setEmpty();
+  rebuild_times_.pieces = lap();
   std::unique_ptr<kerf::SceneCrackTip> crack_tip;
   std::unique_ptr<kerf::SurfaceEnrichment> enrichment;
   if (scene_.crack_tip.given) crack_tip = std::make_unique<kerf::SceneCrackTip>(scene_, mesh_, *pieces, *cuts, nullptr);
   else enrichment = std::make_unique<kerf::SurfaceEnrichment>(kerf::make_surface_enrichment(mesh_, *pieces));
+  rebuild_times_.enrichment = lap();
   auto model = std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, *pieces, crack_tip ? crack_tip->sign_enrichment() : *enrichment,
                                                     rule_, crack_tip ? crack_tip->tip_functions() : nullptr);
+  rebuild_times_.model = lap();
   const bool rebuild = model_ != nullptr;
   const double kinetic_before = account_.kinetic, elastic_before = account_.elastic;
   if (model_) {
@@ -395,7 +419,15 @@ void LiverCut::apply_cut() {
   enrichment_ = std::move(enrichment);
   pieces_ = std::move(pieces);
   cuts_ = std::move(cuts);
+  rebuild_times_.transfer = lap();
   setup_system();
+  if (rebuild && rebuilds_csv_.is_open()) {
+    const RebuildTimes& r = rebuild_times_;
+    char row[512];
+    std::snprintf(row, sizeof row, "%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n", topology_changes_ + 1, r.pieces, r.enrichment, r.model,
+                  r.transfer, r.mass, r.loads, r.pattern, r.integrator);
+    rebuilds_csv_ << row;
+  }
   if (rebuild && cuts_csv_.is_open()) {
     // Nothing lost: the pieces' volumes (the weights of their rules) and the mass e^T M e of a
     // unit translation against the uncut mesh's, and the energies of the same field in the old
@@ -421,11 +453,27 @@ void LiverCut::apply_cut() {
 // preconditioner change only here, when the topology changes; a step of a run whose cut does not
 // grow reuses them.
 void LiverCut::setup_system() {
+  Lap lap;
   dofs_ = kerf::make_cut_xfem_dof_map(*model_, held_);
   const Eigen::SparseMatrix<double> M = kerf::scene_cut_xfem_mass(scene_, *model_, rule_);
-  const Eigen::VectorXd f = kerf::scene_cut_xfem_dynamic_loads(scene_, *model_, boundary_, rule_);
+  rebuild_times_.mass = lap();
+  // The loads that go with the mass. Gravity is the mass times a unit translation along g, M e_g
+  // (u = g at the nodes, a = 0): for the consistent mass that is rho int N^T g, for the per-piece
+  // lumpings each phantom node pulled by its own mass, exactly lumped_gravity_load's definition
+  // (lumped_mass.hpp; tests/chapter_07 checks the two agree), at the cost of one product instead of
+  // a second pass over every piece's rule. Eqs. 81-82 and tractions take the library's path.
+  Eigen::VectorXd f;
+  if (scene_.time.mass == "schoch_eq_81_82" || !scene_.traction.empty()) {
+    f = kerf::scene_cut_xfem_dynamic_loads(scene_, *model_, boundary_, rule_);
+  } else {
+    Eigen::VectorXd e_g = Eigen::VectorXd::Zero(M.rows());
+    for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e_g.segment<3>(3 * v) = scene_.gravity;
+    f = M * e_g;
+  }
+  rebuild_times_.loads = lap();
   const kerf::DofMap all_free = kerf::make_dof_map(model_->num_dof_nodes(), {});
   tangent_assembler_ = std::make_unique<kerf::SparseAssembler>(model_->assembly_slots(), all_free);
+  rebuild_times_.pattern = lap();
   const bool corotated = scene_.model == "corotational";
   const kerf::RotationMethod rotation = kerf::scene_quasi_static_settings(scene_).rotation;
   system_ = {};
@@ -479,6 +527,7 @@ void LiverCut::setup_system() {
   Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
   for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e[3 * v] = 1.0;
   body_mass_ = e.dot(system_.M * e);
+  rebuild_times_.integrator = lap();
 }
 
 // @sect4{LiverCut::advance_blade}
@@ -694,6 +743,7 @@ void LiverCut::run() {
   open(energy_csv_, options_.out_dir / "energy.csv", "step,t,kinetic,elastic,external_work,dissipated\n");
   open(cuts_csv_, options_.out_dir / "cuts.csv",
        "change,t,crossed_tets,enrichments,unknowns,volume_error,mass_error,kinetic_before,kinetic_after,elastic_before,elastic_after\n");
+  open(rebuilds_csv_, options_.out_dir / "rebuilds.csv", "change,pieces_s,enrichment_s,model_s,transfer_s,mass_s,loads_s,pattern_s,integrator_s\n");
   open(timings_csv_, options_.out_dir / "timings.csv",
        "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n");
   if (options_.probes_history) {
