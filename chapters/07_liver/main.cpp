@@ -228,8 +228,8 @@ private:
   void setup_visual(bool need_view, bool on_screen);
   void apply_cut();
   void setup_system();
-  bool advance_blade(const kerf::BladeEdge& world, bool blade_done);
-  void do_timestep(int step, const kerf::BladeEdge& blade, bool blade_done);
+  bool advance_blade(const kerf::BladeEdge* world, bool blade_done);
+  void do_timestep(int step, const kerf::BladeEdge* blade, bool blade_done);
   void check_state(int step) const;
   void output_step(int step);
   void draw(int step);
@@ -539,9 +539,17 @@ void LiverCut::setup_system() {
 //   the skin);
 // - entering: a new sheet starts with the edge of the frame before, mapped by this frame's
 //   anchor, so that the sheet begins outside the skin and the cut is open there;
-// - inside: the edge is offered to the sheet.
+// - inside: the edge is offered to the sheet;
+// - away (nullptr: the interactive mode's mouse button is up): the sheet, if open, ends where it
+//   is, and the next contact starts a new one at its own edge.
 // Returns whether a tet became crossed (the topology changed).
-bool LiverCut::advance_blade(const kerf::BladeEdge& world, bool blade_done) {
+bool LiverCut::advance_blade(const kerf::BladeEdge* away_or_world, bool blade_done) {
+  if (!away_or_world) {
+    sheet_open_ = false;
+    outside_edge_.reset();
+    return false;
+  }
+  const kerf::BladeEdge& world = *away_or_world;
   const kerf::ReferenceBlade blade = kerf::pull_back_blade_edge(*model_, *locator_, state_.u, world, scene_.blade.samples,
                                                                 sheet_open_ ? &last_blade_ : nullptr, 1e-9);
   std::vector<kerf::SweptTriangle> added;
@@ -588,7 +596,7 @@ void LiverCut::check_state(int step) const {
 //
 // The blade first (it cuts the body as the last step left it), a rebuild if it crossed a tet,
 // then chapter 6's step.
-void LiverCut::do_timestep(int step, const kerf::BladeEdge& blade, bool blade_done) {
+void LiverCut::do_timestep(int step, const kerf::BladeEdge* blade, bool blade_done) {
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point start) { return std::chrono::duration<double>(clock::now() - start).count(); };
   step_times_ = {};
@@ -759,7 +767,7 @@ void LiverCut::run() {
   for (int step = 1; step <= steps; ++step) {
     const double t = step * scene_.time.dt;
     const kerf::BladeEdge blade = path_ ? path_->edge_at(t) : kerf::BladeEdge{};
-    do_timestep(step, blade, path_ && t >= path_->end_time());
+    do_timestep(step, &blade, path_ && t >= path_->end_time());
     output_step(step);
     const double simulated = step_times_.blade + step_times_.topology + step_times_.assemble + step_times_.solve;
     max_step_seconds_ = std::max(max_step_seconds_, simulated);
@@ -854,29 +862,20 @@ void LiverCut::run_interactive() {
   };
   const auto on_timer = [&] {
     ++step;
-    kerf::BladeEdge edge;
-    bool have_edge = false;
+    // The blade: along the view direction through the point under the cursor while Shift and
+    // the button are held over the organ; away otherwise.
+    std::optional<kerf::BladeEdge> edge;
     if (mouse.cutting && picker->Pick(mouse.x, mouse.y, 0.0, &view_->renderer())) {
       double picked[3], camera[3];
       picker->GetPickPosition(picked);
       view_->renderer().GetActiveCamera()->GetPosition(camera);
       const Eigen::Vector3d p(picked[0], picked[1], picked[2]), c(camera[0], camera[1], camera[2]);
       const Eigen::Vector3d d = (p - c).normalized();
-      edge = {p - 0.03 * d, p + depth * d};
-      have_edge = true;
-    } else if (mouse.cutting) {
-      // The cursor left the organ: the blade is outside, far beyond the skin.
-      double camera[3];
-      view_->renderer().GetActiveCamera()->GetPosition(camera);
-      const Eigen::Vector3d c(camera[0], camera[1], camera[2]);
-      edge = {c, c + Eigen::Vector3d(0, 0, 1e-3)};
-      have_edge = true;
+      edge = kerf::BladeEdge{p - 0.03 * d, p + depth * d};
     }
-    if (have_edge && !path_) path_ = std::make_unique<kerf::BladePath>(std::vector<kerf::BladeKeyframe>{{0.0, edge}, {1.0, edge}});
+    if (edge && !path_) path_ = std::make_unique<kerf::BladePath>(std::vector<kerf::BladeKeyframe>{{0.0, *edge}, {1.0, *edge}});
     const auto start = std::chrono::steady_clock::now();
-    do_timestep(step, edge, false);
-    // Without the mouse the blade is away: a sheet still open closes.
-    if (!have_edge) sheet_open_ = false;
+    do_timestep(step, edge ? &*edge : nullptr, false);
     draw(step);
     view_->window().Render();
     const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
