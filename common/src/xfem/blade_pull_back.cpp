@@ -3,6 +3,7 @@
 #include "kerf/xfem/pull_back.hpp"
 
 #include <Eigen/LU>
+#include <array>
 #include <stdexcept>
 
 namespace kerf {
@@ -31,6 +32,30 @@ ReferenceBlade pull_back_blade_edge(const CutXfemModel& model, const PointLocato
       result.inside[static_cast<std::size_t>(s)] = 1;
       tet[static_cast<std::size_t>(s)] = back.tet;
       ++result.samples_inside;
+    }
+  }
+  // A sample whose guess failed may still be in the tissue: where the body has moved further
+  // than the sample lies from its surface, the world point is outside the reference mesh (no
+  // tet to start Newton in), or Newton leaves the mesh from it. A neighbour along the edge that
+  // did pull back is a guess as close as the last frame's, so retry from it, until no sample is
+  // added (each sample tries each neighbour once).
+  std::vector<std::array<char, 2>> tried(static_cast<std::size_t>(samples), {0, 0});
+  for (bool added = result.in_tissue(); added;) {
+    added = false;
+    for (int s = 0; s < samples; ++s) {
+      const auto i = static_cast<std::size_t>(s);
+      for (int side = 0; side < 2 && !result.inside[i]; ++side) {
+        const int n = side == 0 ? s - 1 : s + 1;
+        if (n < 0 || n >= samples || !result.inside[static_cast<std::size_t>(n)] || tried[i][static_cast<std::size_t>(side)]) continue;
+        tried[i][static_cast<std::size_t>(side)] = 1;
+        const PullBack back = pull_back_to_reference(model, locator, u, x[i], result.samples[static_cast<std::size_t>(n)], tolerance);
+        if (!back.converged) continue;
+        result.samples[i] = back.reference;
+        result.inside[i] = 1;
+        tet[i] = back.tet;
+        ++result.samples_inside;
+        added = true;
+      }
     }
   }
   if (!result.in_tissue()) {

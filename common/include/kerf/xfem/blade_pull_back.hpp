@@ -10,7 +10,10 @@
 ///
 /// which continues the cut straight out through the body's surface, exact for a body moving
 /// rigidly or linearly (Tet4 pieces are affine, so nearby it is nearly exact). The two ends of the
-/// reference edge come from the inside samples nearest to them. A frame with no sample inside
+/// reference edge come from the inside samples nearest to them. A sample's first guess is its
+/// reference point a frame ago, else its world point; one whose guess fails is tried again from
+/// a neighbour that pulled back (a body moved further than the sample lies from its surface
+/// puts the world point outside the reference mesh, where Newton cannot start). A frame with no sample inside
 /// (the blade above the organ, or gone through it) has no edge of its own: the caller maps its
 /// edge with a neighbouring frame's anchor (ReferenceBlade::anchor), so that the sheet begins and
 /// ends just outside the body.
