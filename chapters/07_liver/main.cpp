@@ -279,6 +279,7 @@ private:
   // Pictures.
   std::unique_ptr<kerf::VisualSurface> visual_;
   std::unique_ptr<kerf::OrganView> view_;
+  std::vector<int> untorn_; // the visual triangles no cut crosses (the cut's, recomputed by apply_cut)
   std::vector<std::filesystem::path> png_frames_;
 
   // Output along the run.
@@ -420,6 +421,17 @@ void LiverCut::apply_cut() {
   pieces_ = std::move(pieces);
   cuts_ = std::move(cuts);
   rebuild_times_.transfer = lap();
+  // The visual triangles the cut tears change only with the cut: found here, once per change,
+  // not at every frame.
+  if (view_ && cuts_->num_surfaces() > 0) {
+    untorn_ = kerf::untorn_triangles(visual_->reference(), cuts_->surface(0));
+    for (int s = 1; s < cuts_->num_surfaces(); ++s) {
+      const std::vector<int> more = kerf::untorn_triangles(visual_->reference(), cuts_->surface(s));
+      std::vector<int> both;
+      std::set_intersection(untorn_.begin(), untorn_.end(), more.begin(), more.end(), std::back_inserter(both));
+      untorn_ = std::move(both);
+    }
+  }
   setup_system();
   if (rebuild && rebuilds_csv_.is_open()) {
     const RebuildTimes& r = rebuild_times_;
@@ -579,18 +591,7 @@ bool LiverCut::advance_blade(const kerf::BladeEdge* away_or_world, bool blade_do
 // @sect4{LiverCut::check_state}
 //
 // As in chapter 6: no NaN, and an energy bounded by what was put in.
-void LiverCut::check_state(int step) const {
-  const bool finite = state_.u.allFinite() && state_.v.allFinite() && state_.a.allFinite() && std::isfinite(account_.kinetic) &&
-                      std::isfinite(account_.elastic);
-  const double energy = account_.kinetic + account_.elastic;
-  if (finite && energy <= 100.0 * energy_scale_ + 1e-12) return;
-  std::ostringstream message;
-  message << "the run diverged at step " << step << " (t = " << state_.t << " s): ";
-  if (!finite) message << "the state is not finite";
-  else message << "kinetic + elastic energy " << energy << " J exceeds 100 times the energy put in, " << energy_scale_ << " J";
-  message << "; nothing of this step was written";
-  throw std::runtime_error(message.str());
-}
+void LiverCut::check_state(int step) const { kerf::check_bounded_state(state_, account_, energy_scale_, step); }
 
 // @sect4{LiverCut::do_timestep}
 //
@@ -632,16 +633,7 @@ void LiverCut::draw(int step) {
   if (!view_) return;
   const auto start = std::chrono::steady_clock::now();
   kerf::TriangleSurface skin = visual_->deform(kerf::xfem_visual_displacement(*model_, state_.u));
-  if (cuts_->num_surfaces() > 0) {
-    std::vector<int> keep = kerf::untorn_triangles(visual_->reference(), cuts_->surface(0));
-    for (int s = 1; s < cuts_->num_surfaces(); ++s) {
-      const std::vector<int> more = kerf::untorn_triangles(visual_->reference(), cuts_->surface(s));
-      std::vector<int> both;
-      std::set_intersection(keep.begin(), keep.end(), more.begin(), more.end(), std::back_inserter(both));
-      keep = std::move(both);
-    }
-    skin = kerf::keep_triangles(skin, keep);
-  }
+  if (cuts_->num_surfaces() > 0) skin = kerf::keep_triangles(skin, untorn_);
   view_->show(skin, kerf::cut_face_surface(*model_, state_.u));
   if (!options_.interactive) {
     char name[64];
@@ -660,18 +652,12 @@ void LiverCut::draw(int step) {
 void LiverCut::output_step(int step) {
   const auto start = std::chrono::steady_clock::now();
   char row[512];
-  std::snprintf(row, sizeof row, "%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, state_.t, account_.kinetic, account_.elastic,
-                account_.external_work, account_.dissipated());
-  energy_csv_ << row;
+  kerf::write_energy_row(energy_csv_, step, state_.t, account_);
   if (history_csv_.is_open()) {
     Eigen::Index outside = 0;
     const kerf::TetField field = [this](Eigen::Index t, const Eigen::Vector3d& x) { return model_->displacement_at(state_.u, t, x); };
     const Eigen::MatrixXd values = kerf::evaluate_tet_field_at(mesh_, field, probe_points_, outside);
-    for (Eigen::Index p = 0; p < values.rows(); ++p) {
-      std::snprintf(row, sizeof row, "%d,%.17g,%ld,%.17g,%.17g,%.17g\n", step, state_.t, static_cast<long>(p), values(p, 0), values(p, 1),
-                    values(p, 2));
-      history_csv_ << row;
-    }
+    kerf::write_probe_history_rows(history_csv_, step, state_.t, values);
     if (step == 0 && outside > 0) std::cerr << "warning: " << outside << " probes lie outside the mesh; their history is nan\n";
   }
   if (step % scene_.output_every == 0 || step == scene_.time.steps) {

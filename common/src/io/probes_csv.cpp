@@ -71,4 +71,12 @@ void sample_probes(const std::filesystem::path& probes_in, const std::filesystem
               << " probe points are outside the mesh (written as nan)\n";
 }
 
+void write_probe_history_rows(std::ostream& out, int step, double t, const Eigen::MatrixXd& values) {
+  char row[256];
+  for (Eigen::Index p = 0; p < values.rows(); ++p) {
+    std::snprintf(row, sizeof row, "%d,%.17g,%ld,%.17g,%.17g,%.17g\n", step, t, static_cast<long>(p), values(p, 0), values(p, 1), values(p, 2));
+    out << row;
+  }
+}
+
 } // namespace kerf

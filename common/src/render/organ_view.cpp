@@ -13,7 +13,6 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <cstdlib>
 
@@ -77,17 +76,7 @@ void OrganView::show(const TriangleSurface& skin, const TriangleSurface& cut_wal
   data_->renderer->ResetCameraClippingRange();
 }
 
-vtkSmartPointer<vtkImageData> OrganView::picture() {
-  data_->window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(data_->window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkSmartPointer<vtkImageData> image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
-}
+vtkSmartPointer<vtkImageData> OrganView::picture() { return window_picture(*data_->window); }
 
 void OrganView::write_png(const std::filesystem::path& file) { kerf::write_png(file, *picture()); }
 

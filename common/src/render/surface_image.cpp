@@ -145,10 +145,13 @@ vtkSmartPointer<vtkImageData> render_surface_image(vtkPolyData& surface, const P
   window->SetOffScreenRendering(1);
   window->SetSize(settings.width, settings.height);
   window->AddRenderer(renderer);
-  window->Render();
+  return window_picture(*window);
+}
 
+vtkSmartPointer<vtkImageData> window_picture(vtkRenderWindow& window) {
+  window.Render();
   vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
+  grab->SetInput(&window);
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
   grab->Update();

@@ -4,6 +4,8 @@
 
 #include "kerf/dynamics/linear_dynamic_system.hpp"
 
+#include <ostream>
+
 namespace kerf {
 
 /// Where the energy of a run went, in J, kept step by step (the columns of a chapter's
@@ -36,5 +38,15 @@ EnergyAccount start_energy_account(const LinearDynamicSystem& system, const Dyna
 
 /// Books one step: `state` is the state after it, `step` what the integrator reported.
 void add_step(EnergyAccount& account, const LinearDynamicSystem& system, const DynamicState& state, const StepEnergy& step);
+
+/// Chapters 6 and 7's divergence check after a step: the state must be finite, and kinetic +
+/// elastic energy may not exceed 100 times `energy_scale` (E_0 plus the sum over the steps of
+/// |work done on the body|): the balance says the energy can never exceed E_0 + the work put in,
+/// so only an unstable integrator gets there.
+/// @throws std::runtime_error `the run diverged at step N (t = T s): ...` naming the step
+void check_bounded_state(const DynamicState& state, const EnergyAccount& account, double energy_scale, int step);
+
+/// energy.csv's row for a step: `step,t,kinetic,elastic,external_work,dissipated`, full precision.
+void write_energy_row(std::ostream& out, int step, double t, const EnergyAccount& account);
 
 } // namespace kerf

@@ -40,4 +40,8 @@ Eigen::MatrixXd evaluate_tet_field_at(const TetMesh& mesh, const TetField& field
 void sample_tet_field_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out,
                              const TetMesh& mesh, const TetField& field, std::ostream* warnings);
 
+/// --probes-history's rows for one step: `step,t,probe,ux,uy,uz`, one per row of `values` (the
+/// displacements at the probes, evaluate_tet_field_at), probe 0-based, full precision.
+void write_probe_history_rows(std::ostream& out, int step, double t, const Eigen::MatrixXd& values);
+
 } // namespace kerf

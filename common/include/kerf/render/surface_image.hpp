@@ -11,6 +11,8 @@
 #include <array>
 #include <string>
 
+class vtkRenderWindow;
+
 namespace kerf {
 
 /// What the picture looks like.
@@ -44,5 +46,9 @@ inline constexpr std::array<unsigned char, 3> picture_background = {255, 255, 25
 ///         1 pixel: the calling program checks what its user gave (require_cell_array in
 ///         piece_mesh.hpp)
 vtkSmartPointer<vtkImageData> render_surface_image(vtkPolyData& surface, const PictureSettings& settings);
+
+/// Draws `window` and reads its pixels back: RGB, row 0 at the bottom (VTK's order), a copy that
+/// outlives the window. What render_surface_image and chapter 7's OrganView both end with.
+vtkSmartPointer<vtkImageData> window_picture(vtkRenderWindow& window);
 
 } // namespace kerf
