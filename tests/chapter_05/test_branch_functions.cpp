@@ -11,6 +11,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -66,6 +67,35 @@ TEST_CASE("the closed-form gradients of F_1..F_4 agree with central differences 
   CHECK(tested > 400);
   MESSAGE("largest relative difference " << worst);
   CHECK(worst < 1e-6);
+}
+
+TEST_CASE("the frame derivatives are the central differences of F in x_a and x_b, and F is sqrt(r) g(theta)") {
+  // F at (x_a, x_b) through its polar coordinates; theta kept 0.1 from the cut, where atan2 wraps.
+  const auto F = [](double xa, double xb) { return kerf::branch_function_values(std::hypot(xa, xb), std::atan2(xb, xa)); };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> radius(0.01, 1.0), angle(-pi + 0.1, pi - 0.1);
+  double worst = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    const double r = radius(rng), theta = angle(rng), xa = r * std::cos(theta), xb = r * std::sin(theta);
+    const Eigen::Matrix<double, 4, 2> d = kerf::branch_function_frame_derivatives(r, theta);
+    // Step 1e-5 r: truncation ~ 1e-10 relative, round-off 1e-16 / 1e-5 = 1e-11.
+    const double h = 1e-5 * r;
+    const Eigen::Vector4d d_a = (F(xa + h, xb) - F(xa - h, xb)) / (2 * h), d_b = (F(xa, xb + h) - F(xa, xb - h)) / (2 * h);
+    // Relative to the whole matrix (~ 1 / sqrt(r)): a row of it vanishes where theta = 0 (F_3, F_4).
+    const double scale = d.norm();
+    for (int l = 0; l < 4; ++l) {
+      worst = std::max({worst, std::abs(d_a(l) - d(l, 0)) / scale, std::abs(d_b(l) - d(l, 1)) / scale});
+    }
+  }
+  MESSAGE("largest relative difference " << worst);
+  CHECK(worst < 1e-6);
+  // The values at one point, in closed form: r = 1/4, theta = pi/3 (sqrt(r) = 1/2).
+  const Eigen::Vector4d at = kerf::branch_function_values(0.25, pi / 3);
+  const double s3 = std::sqrt(3.0);
+  CHECK(at(0) == doctest::Approx(0.25).epsilon(1e-14));            // 1/2 sin(pi/6)
+  CHECK(at(1) == doctest::Approx(s3 / 4).epsilon(1e-14));          // 1/2 cos(pi/6)
+  CHECK(at(2) == doctest::Approx(s3 / 8).epsilon(1e-14));          // 1/2 sin(pi/6) sin(pi/3)
+  CHECK(at(3) == doctest::Approx(3.0 / 8).epsilon(1e-14));         // 1/2 cos(pi/6) sin(pi/3)
 }
 
 TEST_CASE("F_1 jumps by 2 sqrt(r) across the cut, F_2..F_4 are continuous, all vanish on the front") {
