@@ -209,6 +209,54 @@ TEST_CASE("a blade stopped exactly on a tet's last crossing point has crossed it
   CHECK(cut.edge_crossing(cut.tet_edges(0)[4]).point == Eigen::Vector3d(0.75, 0, 0.25)); // edge (1, 3), exact
 }
 
+TEST_CASE("the two crossing tests alone: an edge against one triangle, and a tet's corners separated or not") {
+  // The triangle z = 1/4 over (0, 0), (2, 0), (0, 2); dyadic coordinates, so every answer is exact.
+  const kerf::SweptTriangle triangle{Eigen::Vector3d(0, 0, 0.25), Eigen::Vector3d(2, 0, 0.25), Eigen::Vector3d(0, 2, 0.25)};
+  const auto contact = [&](Eigen::Vector3d a, Eigen::Vector3d b) { return kerf::edge_triangle_contact(triangle, a, b); };
+  // Through the inside: crossed a quarter of the way up.
+  const kerf::EdgeTriangleContact inside = contact({0.5, 0.5, 0}, {0.5, 0.5, 1});
+  CHECK(inside.crossed);
+  CHECK(inside.parameter == 0.25);
+  CHECK_FALSE(inside.end_on_sheet[0]);
+  CHECK_FALSE(inside.end_on_sheet[1]);
+  // Through the triangle's edge x + y = 2, and through its corner (2, 0): closed, so crossed.
+  CHECK(contact({1, 1, 1}, {1, 1, 0}).crossed);
+  CHECK(contact({1, 1, 1}, {1, 1, 0}).parameter == 0.75);
+  CHECK(contact({2, 0, 0}, {2, 0, 0.5}).crossed);
+  // Beside it, and not reaching its plane.
+  CHECK_FALSE(contact({1.5, 1.5, 0}, {1.5, 1.5, 1}).crossed);
+  CHECK_FALSE(contact({0.5, 0.5, 0}, {0.5, 0.5, 0.125}).crossed);
+  CHECK(contact({1.5, 1.5, 0}, {1.5, 1.5, 1}).parameter == 0.0);
+  // An end in the triangle is on the sheet, and the edge is not crossed there.
+  const kerf::EdgeTriangleContact end_in = contact({0.5, 0.5, 1}, {0.5, 0.5, 0.25});
+  CHECK_FALSE(end_in.crossed);
+  CHECK_FALSE(end_in.end_on_sheet[0]);
+  CHECK(end_in.end_on_sheet[1]);
+  // An end in the plane but outside the triangle is not.
+  CHECK_FALSE(contact({3, 3, 0.25}, {3, 3, 1}).end_on_sheet[0]);
+  // An edge in the triangle (in its plane): both ends on the sheet, not crossed.
+  const kerf::EdgeTriangleContact in_plane = contact({0.25, 0.25, 0.25}, {1, 0.5, 0.25});
+  CHECK_FALSE(in_plane.crossed);
+  CHECK(in_plane.end_on_sheet[0]);
+  CHECK(in_plane.end_on_sheet[1]);
+
+  // The tet test, edges in the order of tet_edge_corners: (0,1) (1,2) (0,2) (0,3) (1,3) (2,3).
+  const std::array<bool, 4> none_on{false, false, false, false};
+  CHECK_FALSE(kerf::tet_corners_separated({false, false, false, false, false, false}, none_on));
+  // Corner 3 cut off by its three edges; corners {0, 3} from {1, 2} by the four edges between them.
+  CHECK(kerf::tet_corners_separated({false, false, false, true, true, true}, none_on));
+  CHECK(kerf::tet_corners_separated({true, false, true, false, true, true}, none_on));
+  // Three of those four (G's third edge; 0-3 and 1-2 still joined through 2-3): not yet.
+  CHECK_FALSE(kerf::tet_corners_separated({true, false, true, false, true, false}, none_on));
+  // A sheet through corner 0 crossing the opposite face's edges 1-2 and 1-3 cuts corner 1 off 2 and 3.
+  CHECK(kerf::tet_corners_separated({false, true, false, false, true, false}, {true, false, false, false}));
+  // A sheet that only grazes corner 0 does not; one through the edge 0-1 and crossing 2-3 does.
+  CHECK_FALSE(kerf::tet_corners_separated({false, false, false, false, false, false}, {true, false, false, false}));
+  CHECK(kerf::tet_corners_separated({false, false, false, false, false, true}, {true, true, false, false}));
+  // Three corners on the sheet leave one group: a sheet in a face crosses nothing.
+  CHECK_FALSE(kerf::tet_corners_separated({false, false, false, false, false, false}, {true, true, true, false}));
+}
+
 TEST_CASE("a trembling blade crosses no edge twice: forward, back and forward again change nothing") {
   const kerf::TetMesh mesh = unit_box();
   const TiltedPlane plane;

@@ -66,25 +66,14 @@ struct SemiProgressiveCut::Data {
   std::vector<int> crossed_tets;
   int num_crossed_edges = 0, num_on_sheet = 0;
 
-  /// The separation test: the corners off the sheet, joined by the edges between them that are
-  /// not crossed, fall into two or more groups. Union-find over at most 4 corners.
+  /// The separation test of tet t (tet_corners_separated) on its edges' and corners' state.
   bool corners_separated(int t) const {
-    const auto& c = corners[static_cast<std::size_t>(t)];
-    std::array<int, 4> group{0, 1, 2, 3};
-    const auto root = [&](int a) {
-      while (group[static_cast<std::size_t>(a)] != a) a = group[static_cast<std::size_t>(a)];
-      return a;
-    };
-    for (int j = 0; j < 6; ++j) {
-      const int a = tet_edge_corners[j][0], b = tet_edge_corners[j][1];
-      if (on_sheet[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] || on_sheet[static_cast<std::size_t>(c[static_cast<std::size_t>(b)])]) continue;
-      if (edge_crossed[static_cast<std::size_t>(tet_edges[static_cast<std::size_t>(t)][static_cast<std::size_t>(j)])]) continue;
-      group[static_cast<std::size_t>(root(a))] = root(b);
-    }
-    int groups = 0;
-    for (int a = 0; a < 4; ++a)
-      if (!on_sheet[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] && root(a) == a) ++groups;
-    return groups >= 2;
+    const auto tt = static_cast<std::size_t>(t);
+    std::array<bool, 6> crossed{};
+    std::array<bool, 4> on{};
+    for (std::size_t j = 0; j < 6; ++j) crossed[j] = edge_crossed[static_cast<std::size_t>(tet_edges[tt][j])] != 0;
+    for (std::size_t a = 0; a < 4; ++a) on[a] = on_sheet[static_cast<std::size_t>(corners[tt][a])] != 0;
+    return tet_corners_separated(crossed, on);
   }
 };
 
@@ -151,35 +140,21 @@ std::vector<int> SemiProgressiveCut::add_swept_triangles(const std::vector<Swept
     // multiprecision so often on these long thin triangles that a call took 20 times longer.)
     candidates.clear();
     d.tree.all_intersected_primitives(triangle.bbox(), std::back_inserter(candidates));
-    const Eigen::Vector3d normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
     for (const Primitive::Id& id : candidates) {
       const int e = static_cast<int>(id - d.segments.cbegin());
       const std::array<int, 2> ends = d.edges[static_cast<std::size_t>(e)];
-      std::array<CGAL::Orientation, 2> side{};
-      for (int k = 0; k < 2; ++k) {
-        const int v = ends[static_cast<std::size_t>(k)];
-        const Kernel::Point_3 x = id->vertex(k);
-        side[static_cast<std::size_t>(k)] = CGAL::orientation(triangle[0], triangle[1], triangle[2], x);
-        // A node in the closed triangle is on the sheet (the edge through it is not crossed there).
-        if (side[static_cast<std::size_t>(k)] == CGAL::COPLANAR && !d.on_sheet[static_cast<std::size_t>(v)] && triangle.has_on(x)) {
-          d.on_sheet[static_cast<std::size_t>(v)] = 1;
-          ++d.num_on_sheet;
-          new_nodes.push_back(v);
-        }
-      }
-      // Crossed: the ends strictly on opposite sides of the plane, and the point where the segment
-      // meets the plane in the closed triangle, i.e. the segment's line passes the triangle's three
-      // edges all on one side or on them: no two of the three orientations strictly opposite.
-      if (d.edge_crossed[static_cast<std::size_t>(e)] || side[0] == CGAL::COPLANAR || side[1] == CGAL::COPLANAR || side[0] == side[1]) continue;
-      const Kernel::Point_3 &p = id->vertex(0), &q = id->vertex(1);
-      std::array<int, 3> around{};
-      for (int k = 0; k < 3; ++k) around[static_cast<std::size_t>(k)] = CGAL::orientation(p, q, triangle[k], triangle[(k + 1) % 3]);
-      const bool any_positive = std::count(around.begin(), around.end(), 1) > 0, any_negative = std::count(around.begin(), around.end(), -1) > 0;
-      if (any_positive && any_negative) continue;
       const Eigen::Vector3d xa = d.nodes.row(ends[0]).transpose(), xb = d.nodes.row(ends[1]).transpose();
-      // The signed heights of the ends over the plane (inexact; the side was decided exactly).
-      const double ha = normal.dot(xa - corners[0]), hb = normal.dot(xb - corners[0]);
-      const double s = std::clamp(ha / (ha - hb), 0.0, 1.0);
+      const EdgeTriangleContact contact = edge_triangle_contact(corners, xa, xb);
+      for (std::size_t k = 0; k < 2; ++k) {
+        const auto v = static_cast<std::size_t>(ends[k]);
+        if (!contact.end_on_sheet[k] || d.on_sheet[v]) continue;
+        d.on_sheet[v] = 1;
+        ++d.num_on_sheet;
+        new_nodes.push_back(ends[k]);
+      }
+      // An edge is crossed once, where the sheet first met it (a trembling blade cannot move it).
+      if (!contact.crossed || d.edge_crossed[static_cast<std::size_t>(e)]) continue;
+      const double s = contact.parameter;
       d.edge_crossed[static_cast<std::size_t>(e)] = 1;
       d.crossing[static_cast<std::size_t>(e)] = {s, (1.0 - s) * xa + s * xb};
       ++d.num_crossed_edges;

@@ -44,6 +44,35 @@ struct EdgeCrossing {
   Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< m, in the reference configuration
 };
 
+/// How one mesh edge meets one swept triangle: the edge half of the crossing test, decided with
+/// exact predicates (no tolerance), as the file's comment lists the degenerate contacts.
+struct EdgeTriangleContact {
+  /// End k (x_a, x_b) lies in the closed triangle: in its plane, inside it or on its boundary.
+  /// Such an end is *on the sheet*; the edge is not crossed there.
+  std::array<bool, 2> end_on_sheet{false, false};
+  /// The ends lie strictly on opposite sides of the triangle's plane and the segment meets the
+  /// plane in the closed triangle (a point on the triangle's boundary counts).
+  bool crossed = false;
+  /// Where it is crossed: s = h_a / (h_a - h_b) in [0, 1] from the ends' heights over the plane
+  /// (in doubles), the point (1 - s) x_a + s x_b; 0 where not crossed.
+  double parameter = 0.0;
+};
+
+/// The edge test of the semi-progressive cut: how the segment x_a x_b meets the triangle.
+/// @param triangle a non-degenerate triangle of the swept sheet (m, reference configuration)
+EdgeTriangleContact edge_triangle_contact(const SweptTriangle& triangle, const Eigen::Vector3d& x_a, const Eigen::Vector3d& x_b);
+
+/// The tet test of the semi-progressive cut (notes 7.2; it replaces Gutierrez and Ramos's "third
+/// crossed edge", section 3.3): whether the sheet has crossed a tet. The corners that are not on
+/// the sheet, joined by the tet's edges that are not crossed and have neither end on the sheet,
+/// fall into two or more groups. A planar sheet separates them with 3 crossed edges around a
+/// corner or with 4 splitting the corners 2:2; a corner on the sheet belongs to neither side, so
+/// a sheet through a corner that crosses the opposite face's edges crosses the tet, and one that
+/// only touches a corner (grazing) does not.
+/// @param edge_crossed    per edge of the tet, in the order of tet_edge_corners
+/// @param corner_on_sheet per corner 0..3
+bool tet_corners_separated(const std::array<bool, 6>& edge_crossed, const std::array<bool, 4>& corner_on_sheet);
+
 /// The running state of one cut through a mesh: the crossed edges, the nodes on the sheet and the
 /// crossed tets, updated one swept sheet (a frame's quad) at a time.
 ///
