@@ -79,7 +79,7 @@ exact_filter() { printf '%s' "$1" | sed 's/\\/\\\\/g; s/,/\\,/g'; }
 # if not, the first failing check doctest printed (its location, what failed, the values).
 declare -A passed first_failure
 run_test_case() {
-  local key="$1|$2" output status=0
+  local key="$1"$'\t'"$2" output status=0
   [ -n "${passed[$key]+set}" ] && return 0
   output=$("$(executable "$1")" --no-version --no-colors "-tc=$(exact_filter "$2")" 2>&1) || status=$?
   if [ "$status" -eq 0 ]; then
@@ -122,32 +122,44 @@ else
 fi
 echo
 
-total=0 total_passed=0 functions_without_failure=()
+# The test cases that grade each function (a function may have lines for several suites), as
+# "<suite><tab><test case>", in the order of grading.txt.
+declare -A graded_by
+order=()
 for i in "${!functions[@]}"; do
   function=${functions[$i]} suite=${suites[$i]} filter=${filters[$i]}
   exe=$(executable "$suite")
   if [ ! -x "$exe" ]; then
-    target=assignment_$number
-    fail "${exe#"$root"/} is not built: run ./kerf.sh assignment $number$([ "$mode" = reference ] && echo " --reference"), or cmake --build ${build_dir#"$root"/} --target $target"
+    fail "${exe#"$root"/} is not built: run ./kerf.sh assignment $number$([ "$mode" = reference ] && echo " --reference"), or cmake --build ${build_dir#"$root"/} --target assignment_$number"
   fi
   mapfile -t cases < <(list_test_cases "$exe" "$filter")
   [ ${#cases[@]} -gt 0 ] || fail "$name/grading.txt: the filter of $function matches no test case of tests/$suite: \"$filter\""
-  count=0
-  for test_case in "${cases[@]}"; do
-    run_test_case "$suite" "$test_case"
-    [ "${passed[$suite|$test_case]}" = 1 ] && count=$((count + 1))
+  [ -n "${graded_by[$function]+set}" ] || order+=("$function")
+  for test_case in "${cases[@]}"; do graded_by[$function]+="$suite"$'\t'"$test_case"$'\n'; done
+done
+
+total=0 total_passed=0 functions_without_failure=()
+for function in "${order[@]}"; do
+  mapfile -t keys < <(printf '%s' "${graded_by[$function]}")
+  count=0 where=""
+  for key in "${keys[@]}"; do
+    run_test_case "${key%%$'\t'*}" "${key#*$'\t'}"
+    [ "${passed[$key]}" = 1 ] && count=$((count + 1))
+    [[ $where == *"tests/${key%%$'\t'*}"* ]] || where+="${where:+, }tests/${key%%$'\t'*}"
   done
-  printf '%-28s %d/%d test cases pass  (tests/%s)\n' "$function" "$count" "${#cases[@]}" "$suite"
-  for test_case in "${cases[@]}"; do
-    if [ "${passed[$suite|$test_case]}" = 1 ]; then
-      echo "    passed  $test_case"
+  printf '%-28s %d/%d test cases pass  (%s)\n' "$function" "$count" "${#keys[@]}" "$where"
+  for key in "${keys[@]}"; do
+    test_case=${key#*$'\t'} suite_note=""
+    [[ $where == *,* ]] && suite_note="  (tests/${key%%$'\t'*})"
+    if [ "${passed[$key]}" = 1 ]; then
+      echo "    passed  $test_case$suite_note"
     else
-      echo "    FAILED  $test_case"
-      printf '%s\n' "${first_failure[$suite|$test_case]}" | sed 's/^/              /'
+      echo "    FAILED  $test_case$suite_note"
+      printf '%s\n' "${first_failure[$key]}" | sed 's/^/              /'
     fi
   done
-  [ "$count" -lt "${#cases[@]}" ] || functions_without_failure+=("$function")
-  total=$((total + ${#cases[@]})) total_passed=$((total_passed + count))
+  [ "$count" -lt "${#keys[@]}" ] || functions_without_failure+=("$function")
+  total=$((total + ${#keys[@]})) total_passed=$((total_passed + count))
 done
 
 percent=$((100 * total_passed / total)) # rounded down: 100 % means everything passes
@@ -168,7 +180,14 @@ case $check in
       echo "grade.sh: --check-stubs: no test case of $function fails with the stubs: it grades nothing" >&2
       status=1
     done
-    for function in "${functions[@]}"; do
+    # Not an error by the design, but worth a look: a test case that passes with the stubs
+    # grades none of the student's code (it may run a chapter's program, which links the
+    # library's own code) and gives its points away.
+    for key in "${!passed[@]}"; do
+      [ "${passed[$key]}" = 1 ] &&
+        echo "grade.sh: --check-stubs: note: \"${key#*$'\t'}\" (tests/${key%%$'\t'*}) passes with the stubs: it grades none of them" >&2
+    done
+    for function in "${order[@]}"; do
       grep -rqw -- "$function" "$folder/stubs" ||
         { echo "grade.sh: --check-stubs: $function is graded but no file of $name/stubs mentions it" >&2; status=1; }
     done
