@@ -69,7 +69,25 @@ TEST_CASE("the closed-form gradients of F_1..F_4 agree with central differences 
   CHECK(worst < 1e-6);
 }
 
-TEST_CASE("the frame derivatives are the central differences of F in x_a and x_b, and F is sqrt(r) g(theta)") {
+TEST_CASE("the branch functions in closed form at r = 1/4, theta = pi/3, and F_1 = +-sqrt(r) on the cut's two faces") {
+  // sqrt(r) = 1/2, sin(pi/6) = 1/2, cos(pi/6) = sin(pi/3) = sqrt(3)/2.
+  const Eigen::Vector4d at = kerf::branch_function_values(0.25, pi / 3);
+  const double s3 = std::sqrt(3.0);
+  CHECK(at(0) == doctest::Approx(0.25).epsilon(1e-14));    // 1/2 sin(pi/6)
+  CHECK(at(1) == doctest::Approx(s3 / 4).epsilon(1e-14));  // 1/2 cos(pi/6)
+  CHECK(at(2) == doctest::Approx(s3 / 8).epsilon(1e-14));  // 1/2 sin(pi/6) sin(pi/3)
+  CHECK(at(3) == doctest::Approx(3.0 / 8).epsilon(1e-14)); // 1/2 cos(pi/6) sin(pi/3)
+  // On the faces theta = +-pi: F_1 = +-sqrt(r), F_2 = 0, and F_3 = F_4 = 0 (sin(pi) = 0).
+  for (const double side : {1.0, -1.0}) {
+    const Eigen::Vector4d face = kerf::branch_function_values(0.09, side * pi);
+    CHECK(face(0) == doctest::Approx(side * 0.3).epsilon(1e-14));
+    CHECK(std::abs(face(1)) < 1e-15);
+    CHECK(std::abs(face(2)) < 1e-15);
+    CHECK(std::abs(face(3)) < 1e-15);
+  }
+}
+
+TEST_CASE("the frame derivatives are the central differences of F in x_a and x_b") {
   // F at (x_a, x_b) through its polar coordinates; theta kept 0.1 from the cut, where atan2 wraps.
   const auto F = [](double xa, double xb) { return kerf::branch_function_values(std::hypot(xa, xb), std::atan2(xb, xa)); };
   std::mt19937 rng(7);
@@ -89,13 +107,6 @@ TEST_CASE("the frame derivatives are the central differences of F in x_a and x_b
   }
   MESSAGE("largest relative difference " << worst);
   CHECK(worst < 1e-6);
-  // The values at one point, in closed form: r = 1/4, theta = pi/3 (sqrt(r) = 1/2).
-  const Eigen::Vector4d at = kerf::branch_function_values(0.25, pi / 3);
-  const double s3 = std::sqrt(3.0);
-  CHECK(at(0) == doctest::Approx(0.25).epsilon(1e-14));            // 1/2 sin(pi/6)
-  CHECK(at(1) == doctest::Approx(s3 / 4).epsilon(1e-14));          // 1/2 cos(pi/6)
-  CHECK(at(2) == doctest::Approx(s3 / 8).epsilon(1e-14));          // 1/2 sin(pi/6) sin(pi/3)
-  CHECK(at(3) == doctest::Approx(3.0 / 8).epsilon(1e-14));         // 1/2 cos(pi/6) sin(pi/3)
 }
 
 TEST_CASE("F_1 jumps by 2 sqrt(r) across the cut, F_2..F_4 are continuous, all vanish on the front") {

@@ -209,7 +209,7 @@ TEST_CASE("a blade stopped exactly on a tet's last crossing point has crossed it
   CHECK(cut.edge_crossing(cut.tet_edges(0)[4]).point == Eigen::Vector3d(0.75, 0, 0.25)); // edge (1, 3), exact
 }
 
-TEST_CASE("the two crossing tests alone: an edge against one triangle, and a tet's corners separated or not") {
+TEST_CASE("the edge test alone: an edge against one triangle, through it, on its boundary, beside it, ending in it, in its plane") {
   // The triangle z = 1/4 over (0, 0), (2, 0), (0, 2); dyadic coordinates, so every answer is exact.
   const kerf::SweptTriangle triangle{Eigen::Vector3d(0, 0, 0.25), Eigen::Vector3d(2, 0, 0.25), Eigen::Vector3d(0, 2, 0.25)};
   const auto contact = [&](Eigen::Vector3d a, Eigen::Vector3d b) { return kerf::edge_triangle_contact(triangle, a, b); };
@@ -239,8 +239,10 @@ TEST_CASE("the two crossing tests alone: an edge against one triangle, and a tet
   CHECK_FALSE(in_plane.crossed);
   CHECK(in_plane.end_on_sheet[0]);
   CHECK(in_plane.end_on_sheet[1]);
+}
 
-  // The tet test, edges in the order of tet_edge_corners: (0,1) (1,2) (0,2) (0,3) (1,3) (2,3).
+TEST_CASE("the tet test alone: a tet's corners separated by its crossed edges and its corners on the sheet, or not") {
+  // Edges in the order of tet_edge_corners: (0,1) (1,2) (0,2) (0,3) (1,3) (2,3).
   const std::array<bool, 4> none_on{false, false, false, false};
   CHECK_FALSE(kerf::tet_corners_separated({false, false, false, false, false, false}, none_on));
   // Corner 3 cut off by its three edges; corners {0, 3} from {1, 2} by the four edges between them.
