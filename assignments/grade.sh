@@ -23,7 +23,7 @@ fail() { echo "grade.sh: $*" >&2; exit 2; }
 
 here=$(pwd)
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-number="" mode=stubs check="" build_dir=build/release
+number="" mode=stubs check="" build_dir=$root/build/release # a --build-dir is taken from where you are
 while [ $# -gt 0 ]; do
   case $1 in
     --reference) mode=reference ;;
