@@ -12,7 +12,8 @@
 #   --check-reference  for CI: fail unless the library's own code scores 100 %
 #
 # It only runs what is built: `./kerf.sh assignment NN` builds it first, then calls this.
-# Which test cases grade which function is the assignment's grading.txt, one line each:
+# Which test cases grade which function is the assignment's grading.txt, one line each (lines
+# that start with # are comments):
 #   <function> | <test suite, a folder of tests/> | <doctest test-case filter>
 # Exit status: 0 when the grading ran (whatever the score) or the check passed, 1 when a check
 # failed, 2 when the grading could not run (a bad argument, a missing file or executable).
@@ -22,7 +23,7 @@ fail() { echo "grade.sh: $*" >&2; exit 2; }
 
 here=$(pwd)
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-number="" mode=stubs check="" build_dir=build/release
+number="" mode=stubs check="" build_dir=$root/build/release # a --build-dir is taken from where you are
 while [ $# -gt 0 ]; do
   case $1 in
     --reference) mode=reference ;;
@@ -32,7 +33,7 @@ while [ $# -gt 0 ]; do
       [ $# -ge 2 ] || fail "--build-dir needs a folder"
       build_dir=$2
       shift ;;
-    -h | --help) sed -n '2,18p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,19p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) fail "unknown option $1 (try --help)" ;;
     *)
       [ -z "$number" ] || fail "one assignment at a time: got $number and $1"
@@ -75,15 +76,22 @@ list_test_cases() {
 # name would otherwise split the filter or escape what follows.
 exact_filter() { printf '%s' "$1" | sed 's/\\/\\\\/g; s/,/\\,/g'; }
 
+# A test case that runs longer than this (in seconds) has failed: a loop that never ends must
+# not stop the grading.
+time_limit=${KERF_GRADE_TIMEOUT:-300}
+
 # Runs one test case once, however many functions it grades; remembers whether it passed and,
 # if not, the first failing check doctest printed (its location, what failed, the values).
 declare -A passed first_failure
 run_test_case() {
   local key="$1"$'\t'"$2" output status=0
   [ -n "${passed[$key]+set}" ] && return 0
-  output=$("$(executable "$1")" --no-version --no-colors "-tc=$(exact_filter "$2")" 2>&1) || status=$?
+  output=$(timeout "$time_limit" "$(executable "$1")" --no-version --no-colors "-tc=$(exact_filter "$2")" 2>&1) || status=$?
   if [ "$status" -eq 0 ]; then
     passed[$key]=1
+  elif [ "$status" -eq 124 ]; then
+    passed[$key]=0
+    first_failure[$key]="(stopped after $time_limit s: an endless loop? KERF_GRADE_TIMEOUT sets the limit)"
   else
     passed[$key]=0
     # doctest's block for a failure starts at "<file>:<line>: ERROR:" (or FATAL ERROR, or a
@@ -98,12 +106,12 @@ run_test_case() {
 
 trim() { local s=$1; s=${s#"${s%%[![:space:]]*}"}; printf '%s' "${s%"${s##*[![:space:]]}"}"; }
 
-# grading.txt: "<function> | <suite> | <filter>" per line, # starts a comment.
+# grading.txt: "<function> | <suite> | <filter>" per line; a line that starts with # is a
+# comment (a # elsewhere is part of the line: test-case names may have one).
 functions=() suites=() filters=() line_number=0
 while IFS= read -r line || [ -n "$line" ]; do
   line_number=$((line_number + 1))
-  line=${line%%#*}
-  [[ $line =~ ^[[:space:]]*$ ]] && continue
+  [[ $line =~ ^[[:space:]]*(#.*)?$ ]] && continue
   IFS='|' read -r function suite filter extra <<<"$line"
   function=$(trim "$function") suite=$(trim "${suite:-}") filter=$(trim "${filter:-}")
   if [ -z "$function" ] || [ -z "$suite" ] || [ -z "$filter" ] || [ -n "${extra:-}" ]; then

@@ -69,6 +69,7 @@
 #include "kerf/scene/scene_quasi_static.hpp"
 #include "kerf/xfem/blade_pull_back.hpp"
 #include "kerf/xfem/cut_faces.hpp"
+#include "kerf/xfem/cut_opening.hpp"
 #include "kerf/xfem/cut_state_transfer.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/cut_xfem_output.hpp"
@@ -261,6 +262,7 @@ private:
 
   // The model of the current cut (rebuilt by apply_cut), and what it refers to.
   std::unique_ptr<kerf::CutSurfaces> cuts_;
+  std::vector<kerf::TriangleSurface> sheet_surfaces_; // the sheets cuts_ was made of
   std::unique_ptr<kerf::MeshPieces> pieces_;
   std::unique_ptr<kerf::SurfaceEnrichment> enrichment_; // chapter 4's, without a "crack_tip" field
   std::unique_ptr<kerf::SceneCrackTip> crack_tip_;
@@ -286,7 +288,9 @@ private:
   StepTimes step_times_, total_times_;
   double max_step_seconds_ = 0.0, max_topology_step_seconds_ = 0.0;
   Eigen::MatrixXd probe_points_;
-  std::ofstream energy_csv_, history_csv_, timings_csv_, cuts_csv_, rebuilds_csv_;
+  std::ofstream energy_csv_, history_csv_, timings_csv_, cuts_csv_, rebuilds_csv_, opening_csv_;
+  double opening_spacing_ = 0.0; // the distance between the points the opening is sampled at: half a mean edge (m)
+  std::unique_ptr<kerf::CutOpeningSampler> opening_sampler_; // of the current model; made by output_step
   RebuildTimes rebuild_times_;
   double mesh_volume_ = 0.0; // the uncut mesh's, sum of |det J| / 6
   std::vector<std::pair<double, std::filesystem::path>> frames_;
@@ -323,7 +327,10 @@ void LiverCut::make_mesh() {
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
     const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(mesh_, t);
     mesh_volume_ += std::abs((X.row(1) - X.row(0)).dot((X.row(2) - X.row(0)).cross(X.row(3) - X.row(0)))) / 6.0;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) opening_spacing_ += (X.row(a) - X.row(b)).norm();
   }
+  opening_spacing_ /= 2.0 * 6.0 * static_cast<double>(mesh_.num_tets());
 }
 
 // @sect4{LiverCut::setup_blade}
@@ -392,6 +399,7 @@ void LiverCut::apply_cut() {
   for (const kerf::CutSheet& sheet : sheets_)
     if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
   Lap lap;
+  sheet_surfaces_ = surfaces;
   auto cuts = std::make_unique<kerf::CutSurfaces>(std::move(surfaces));
   // Only the tets near the quads added since the last rebuild can have new pieces: the others
   // keep theirs (recut_mesh_into_pieces).
@@ -414,7 +422,9 @@ void LiverCut::apply_cut() {
     state_.v = kerf::transfer_cut_state(*model_, *model, state_.v);
     state_.a = kerf::transfer_cut_state(*model_, *model, state_.a);
   }
-  // The old model is gone only now: the transfer read it. Then what it referred to.
+  // The old model is gone only now: the transfer read it. Then what it referred to, and the
+  // opening's sample points, which were found in the old pieces.
+  opening_sampler_.reset();
   model_ = std::move(model);
   crack_tip_ = std::move(crack_tip);
   enrichment_ = std::move(enrichment);
@@ -660,6 +670,15 @@ void LiverCut::output_step(int step) {
     kerf::write_probe_history_rows(history_csv_, step, state_.t, values);
     if (step == 0 && outside > 0) std::cerr << "warning: " << outside << " probes lie outside the mesh; their history is nan\n";
   }
+  // How far the wound has opened (xfem/cut_opening.hpp): the jump across the cut, sampled every
+  // half edge, from points 1e-6 of an edge either side of it. Where the points lie is found once
+  // per change of topology (apply_cut drops the sampler), the jump at every step.
+  if (!opening_sampler_)
+    opening_sampler_ = std::make_unique<kerf::CutOpeningSampler>(*model_, *locator_, sheet_surfaces_, opening_spacing_, 2e-6 * opening_spacing_);
+  const kerf::CutOpening opening = opening_sampler_->measure(state_.u);
+  std::snprintf(row, sizeof row, "%d,%.17g,%.9e,%.9e,%.9e,%.9e,%.9e\n", step, state_.t, opening.area, opening.gap_volume,
+                opening.mean_opening(), opening.max_normal_opening, opening.max_jump);
+  opening_csv_ << row;
   if (step % scene_.output_every == 0 || step == scene_.time.steps) {
     char name[64];
     std::snprintf(name, sizeof name, "_pieces_%06d.vtu", step);
@@ -689,7 +708,7 @@ void LiverCut::output_results() {
     report("wrote " + options_.probes_out->string());
   }
   report("wrote " + (options_.out_dir / (scene_.name + "_pieces.pvd")).string() + " (" + std::to_string(frames_.size()) +
-         " frames), energy.csv and timings.csv in " + options_.out_dir.string());
+         " frames), energy.csv, opening.csv and timings.csv in " + options_.out_dir.string());
   if (!png_frames_.empty()) {
     report("wrote " + std::to_string(png_frames_.size()) + " PNG frames in " + (options_.out_dir / "frames").string());
     if (scene_.render.animation) {
@@ -738,6 +757,7 @@ void LiverCut::run() {
   open(cuts_csv_, options_.out_dir / "cuts.csv",
        "change,t,crossed_tets,enrichments,unknowns,volume_error,mass_error,kinetic_before,kinetic_after,elastic_before,elastic_after\n");
   open(rebuilds_csv_, options_.out_dir / "rebuilds.csv", "change,pieces_s,enrichment_s,model_s,transfer_s,mass_s,loads_s,pattern_s,integrator_s\n");
+  open(opening_csv_, options_.out_dir / "opening.csv", "step,t,cut_area,gap_volume,mean_opening,max_opening,max_jump\n");
   open(timings_csv_, options_.out_dir / "timings.csv",
        "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n");
   if (options_.probes_history) {
