@@ -6,6 +6,11 @@
 #   ./kerf.sh asan     the same test suite built with Address and UndefinedBehavior sanitizers
 #   ./kerf.sh bench    build and run the benchmarks (one core), print the tables
 #   ./kerf.sh book     build the book into build/release/book/html
+#   ./kerf.sh assignment NN [--reference]
+#                      build course assignment NN (assignments/NN_*: your code in its stubs/ in
+#                      place of the library's) and grade it with the chapter's tests: a score per
+#                      function and the first failing check of each failing test case;
+#                      --reference grades the library's own code, which scores 100 %
 #   ./kerf.sh fuzz     fuzz the mesh and surface readers and the scene parser with libFuzzer (clang), 60 s
 #                      each or KERF_FUZZ_SECONDS, from the seeds in tests/fuzz/corpus
 set -euo pipefail
@@ -119,6 +124,19 @@ case "${1:-demo}" in
     configure_and_build release --target book
     echo "kerf.sh: open build/release/book/html/index.html"
     ;;
+  assignment)
+    shift
+    number=${1:-}
+    [[ $number =~ ^[0-9]{1,2}$ ]] && number=$(printf '%02d' "$((10#$number))")
+    # A number with no assignment folder (or no number): the grader says so in one line,
+    # before anything is built.
+    compgen -G "assignments/${number:-none}_*/grading.txt" >/dev/null || exec assignments/grade.sh "$@"
+    install_missing_packages
+    # Only what the graded tests need: the library, the graded suites' test objects, the
+    # stubs, and the links of the graded executables (and of the suites' own, for --reference).
+    configure_and_build release --target "assignment_$number" -j "$jobs"
+    assignments/grade.sh "$@" --build-dir build/release
+    ;;
   fuzz)
     packages+=(clang libclang-rt-14-dev) # clang and its libFuzzer runtime, for the fuzz targets only
     install_missing_packages
@@ -126,7 +144,7 @@ case "${1:-demo}" in
     run_fuzzers
     ;;
   *)
-    echo "usage: ./kerf.sh [demo|test|asan|bench|book|fuzz]" >&2
+    echo "usage: ./kerf.sh [demo|test|asan|bench|book|fuzz|assignment NN [--reference]]" >&2
     exit 2
     ;;
 esac
