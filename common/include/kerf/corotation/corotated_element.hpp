@@ -71,6 +71,8 @@ Eigen::Matrix<double, 3 * n, 1> corotated_displacement(const Eigen::Matrix3d& R,
 /// warped one, eq. 38) and count it in `statistics` (dropped_rotation_terms). "Singular" means
 /// |det| <= 1e-6 |tr(S) I - S|_F^3, i.e. the smallest eigenvalue is below about 1e-6 of the
 /// largest, where the terms are a million times their usual size and no longer a useful tangent.
+/// Defined (src/corotation/corotated_point.cpp) for n = 4, a Tet4, and n = 10, one quadrature
+/// point of a Tet10: the only elements Kerf has.
 /// @return the rotation used, with its Higham iteration count; `statistics`, when given,
 ///         records the point (inversion, Higham failure, dropped terms)
 template <int n>
@@ -78,41 +80,6 @@ PolarDecomposition add_corotated_point(const Eigen::Matrix<double, 3 * n, 3 * n>
                                        const Eigen::Matrix<double, n, 3>& X, const Eigen::Matrix<double, n, 3>& u,
                                        double weight, double mu, double lambda, RotationMethod method,
                                        CorotationalTangent tangent, Eigen::Matrix<double, 3 * n, 1>& f,
-                                       Eigen::Matrix<double, 3 * n, 3 * n>* Kt, CorotationStatistics* statistics = nullptr) {
-  constexpr int m = 3 * n;
-  const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + u.transpose() * G;
-  const PolarDecomposition polar = element_rotation(F, method);
-  if (statistics) statistics->record(polar, F, weight);
-  const Eigen::Matrix3d& R = polar.R;
-
-  const Eigen::Matrix<double, m, 1> Kd = K * corotated_displacement<n>(R, X, u);
-  for (int a = 0; a < n; ++a) f.template segment<3>(3 * a) += R * Kd.template segment<3>(3 * a);
-  if (!Kt) return polar;
-
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      Kt->template block<3, 3>(3 * a, 3 * b) += R * K.template block<3, 3>(3 * a, 3 * b) * R.transpose();
-  if (tangent == CorotationalTangent::warped) return polar;
-
-  const Eigen::Matrix3d& S = polar.S;
-  const Eigen::Matrix3d M = S.trace() * Eigen::Matrix3d::Identity() - S;
-  const double size = M.norm();
-  if (!(std::abs(M.determinant()) > 1e-6 * size * size * size)) {
-    if (statistics) ++statistics->dropped_rotation_terms;
-    return polar;
-  }
-  const Eigen::Matrix3d strain = 0.5 * (S + S.transpose()) - Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d sigma = 2.0 * mu * strain + lambda * strain.trace() * Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d M_inverse = M.inverse();
-  for (int b = 0; b < n; ++b)
-    for (int q = 0; q < 3; ++q) {
-      const Eigen::Vector3d w = M_inverse * G.row(b).transpose().cross(R.row(q).transpose());
-      Eigen::Matrix3d W;
-      W << 0, -w[2], w[1], w[2], 0, -w[0], -w[1], w[0], 0;
-      const Eigen::Matrix3d dP = weight * R * (W * sigma + mu * (S * W - W * S));
-      for (int a = 0; a < n; ++a) Kt->col(3 * b + q).template segment<3>(3 * a) += dP * G.row(a).transpose();
-    }
-  return polar;
-}
+                                       Eigen::Matrix<double, 3 * n, 3 * n>* Kt, CorotationStatistics* statistics = nullptr);
 
 } // namespace kerf

@@ -22,12 +22,7 @@ inline double shifted_enrichment(int side_sign, int node_sign) { return 0.5 * (s
 /// corner values u_side (a "phantom" element that the side alone would deform). Everything on
 /// that side, strain, stress, rotation, is the ordinary Tet4's of u_side.
 /// @param psi Psi_side,i of the four corners; 0 for a corner without enriched DOFs
-inline Eigen::Matrix<double, 12, 24> side_operator(const Eigen::Vector4d& psi) {
-  Eigen::Matrix<double, 12, 24> T = Eigen::Matrix<double, 12, 24>::Zero();
-  T.leftCols<12>().setIdentity();
-  for (int i = 0; i < 4; ++i) T.block<3, 3>(3 * i, 12 + 3 * i) = psi[i] * Eigen::Matrix3d::Identity();
-  return T;
-}
+Eigen::Matrix<double, 12, 24> side_operator(const Eigen::Vector4d& psi);
 
 /// The enriched element stiffness K^X (24 x 24, eq. 53) of a Tet4 cut into V_a above and V_b
 /// below, by volume ratios.
@@ -58,11 +53,7 @@ inline Eigen::Matrix<double, 12, 24> side_operator(const Eigen::Vector4d& psi) {
 /// @param fraction_above V_a / V; V_b / V = 1 - V_a / V
 /// @param psi_above      Psi_a,i of the four corners (0 where a corner has no enriched DOFs)
 /// @param psi_below      Psi_b,i
-inline Eigen::Matrix<double, 24, 24> xfem_tet4_stiffness(const Eigen::Matrix<double, 12, 12>& K, double fraction_above,
-                                                        const Eigen::Vector4d& psi_above, const Eigen::Vector4d& psi_below) {
-  const Eigen::Matrix<double, 12, 24> T_a = side_operator(psi_above);
-  const Eigen::Matrix<double, 12, 24> T_b = side_operator(psi_below);
-  return fraction_above * T_a.transpose() * K * T_a + (1.0 - fraction_above) * T_b.transpose() * K * T_b;
-}
+Eigen::Matrix<double, 24, 24> xfem_tet4_stiffness(const Eigen::Matrix<double, 12, 12>& K, double fraction_above,
+                                                 const Eigen::Vector4d& psi_above, const Eigen::Vector4d& psi_below);
 
 } // namespace kerf

@@ -1,0 +1,46 @@
+// Private to the kerf library (not under include/): the planes of a convex cell's faces, which
+// both the splitting of a tet (split_tet_by_triangles.cpp) and the lookup of the pieces that
+// hold a point (tet_pieces.cpp) test points against.
+#pragma once
+
+#include "kerf/cut/convex_cell.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+
+namespace kerf {
+
+// The side function of any other plane (through an edge of a triangle, or a face of a cell):
+// the distance, snapped.
+struct SnappedPlaneSide {
+  Eigen::Vector3d normal; // unit
+  double offset;
+  double tolerance;
+  double operator()(const Eigen::Vector3d& x) const {
+    const double distance = normal.dot(x) - offset;
+    return std::abs(distance) <= tolerance ? 0.0 : distance;
+  }
+};
+
+// The plane of a face of a cell, with its outward normal: value > 0 outside the cell.
+inline SnappedPlaneSide face_plane(const CellFace& face, double tolerance) {
+  const Eigen::Vector3d n = polygon_area_vector(face.polygon).normalized();
+  return {n, n.dot(face.polygon.front()), tolerance};
+}
+
+// Whether a face is more than a sliver: wider than the snap (1e-12 d), its width taken as its
+// area over its longest edge. A narrower face is one the snap cannot tell apart from a line: a split left it where two cut planes meet at an angle, where a
+// plane grazes an edge, or round a vertex of the cut where several triangles' edge planes meet
+// (an icosphere's vertices leave faces of 1e-22 d^2 there). Its normal is noise, it bounds
+// nothing the cell's other faces do not, and no material joins two cells through it: gluing
+// through it let the inside of a fine icosphere leak to the outside.
+inline bool has_area(const CellFace& face, double snap) {
+  if (face.polygon.size() < 3) return false;
+  double longest = 0.0;
+  for (std::size_t k = 0; k < face.polygon.size(); ++k)
+    longest = std::max(longest, (face.polygon[(k + 1) % face.polygon.size()] - face.polygon[k]).norm());
+  return polygon_area_vector(face.polygon).norm() > snap * longest;
+}
+
+} // namespace kerf
