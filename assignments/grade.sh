@@ -96,9 +96,15 @@ run_test_case() {
     passed[$key]=0
     # doctest's block for a failure starts at "<file>:<line>: ERROR:" (or FATAL ERROR, or a
     # crash) and ends at a blank line; paths are shown from the top of the repository (the
-    # compiler may have seen them absolute, or relative to the build folder).
-    first_failure[$key]=$(printf '%s\n' "$output" |
-      awk '/: (ERROR|FATAL ERROR):/ && !found { found = 1 } found && /^$/ { exit } found { print }' |
+    # compiler may have seen them absolute, or relative to the build folder). An exception in a
+    # SUBCASE first gets a block that only says it "will translate later": the next block has
+    # the exception's message, so that one is shown.
+    # (awk reads a here-string, not a pipe: it stops at the first block, and a writer into a
+    # closed pipe would be killed by SIGPIPE, which pipefail turns into the script's death.)
+    first_failure[$key]=$(awk '/: (ERROR|FATAL ERROR):/ && block == "" { block = $0; next }
+           block != "" && /^$/ { if (block !~ /will translate later/) { print block; shown = 1; exit } block = ""; next }
+           block != "" { block = block "\n" $0 }
+           END { if (!shown && block != "" && block !~ /will translate later/) print block }' <<< "$output" |
       sed "s|$root/||g; s|^\(\.\./\)*||")
     [ -n "${first_failure[$key]}" ] || first_failure[$key]="(no failing check printed; the test program exited with status $status)"
   fi
