@@ -7,6 +7,7 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/xfem/cut_faces.hpp"
 
+#include "chapter_07/tilted_plane_cut.hpp"
 #include "support/cut_body.hpp"
 
 #include <doctest/doctest.h>
@@ -17,39 +18,7 @@
 
 namespace {
 
-// The plane z = 0.43 + 0.17 (x - 0.5), as a rectangle far beyond the box, its normal up-ish.
-// In the box it runs from z = 0.345 (x = 0) to z = 0.515 (x = 1), between the nodes' layers
-// (multiples of 0.25 in the 4 x 4 x 4 box, 0.3875 and 0.4725 at x = 0.25 and 0.75): it crosses
-// every column of tets and passes through no node. Inside the box it is a rectangle 1 m wide
-// in y and sqrt(1 + 0.17^2) m long in x: that area.
-const Eigen::Vector3d plane_point(0.5, 0.5, 0.43);
-const double plane_slope = 0.17;
-double area_in_box() { return std::sqrt(1.0 + plane_slope * plane_slope); }
-
-kerf::TriangleSurface tilted_plane() {
-  const Eigen::Vector3d along_x(3.0, 0.0, 3.0 * plane_slope);
-  const Eigen::Vector3d corner = plane_point - 0.5 * along_x - Eigen::Vector3d(0.0, 1.5, 0.0);
-  return kerf::rectangle_surface(kerf::RectangleCut(corner, along_x, Eigen::Vector3d(0.0, 3.0, 0.0)));
-}
-
-Eigen::Vector3d plane_normal() { return Eigen::Vector3d(-plane_slope, 0.0, 1.0).normalized(); }
-
-// Signed distance of x from the plane (m), positive above (the side the normal points to).
-double height(const Eigen::Vector3d& x) { return (x - plane_point).dot(plane_normal()); }
-
-// Each side moved by d along the normal away from the plane: u_i its home side's value, a_k the
-// other side's minus it (one enrichment per node the plane separates from the far side).
-Eigen::VectorXd opening(const support::CutBody& body, double d) {
-  const Eigen::Index N = body.mesh.num_nodes();
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes());
-  for (Eigen::Index i = 0; i < N; ++i) {
-    const Eigen::Vector3d side = (height(body.mesh.nodes.row(i).transpose()) > 0.0 ? d : -d) * plane_normal();
-    u.segment<3>(3 * i) = side;
-    for (int k = body.enrichment.first_enrichment[static_cast<std::size_t>(i)]; k < body.enrichment.first_enrichment[static_cast<std::size_t>(i) + 1]; ++k)
-      u.segment<3>(3 * (N + k)) = -2.0 * side;
-  }
-  return u;
-}
+using namespace tilted_cut;
 
 // What the walls are: per side (+1 the wall at height +d, -1 at -d) the area, the largest
 // distance of a corner from its plane, and the largest |n_f - expected| of a unit normal.
@@ -83,7 +52,7 @@ TEST_CASE("cut faces: an opened plane cut has one wall per side on the plane shi
   const support::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {4, 4, 4}), {tilted_plane()}, kerf::LinearMaterial{});
   REQUIRE(body.enrichment.num_enrichments() > 0);
   const double d = 0.015;
-  const kerf::TriangleSurface faces = kerf::cut_face_surface(body.model, opening(body, d));
+  const kerf::TriangleSurface faces = kerf::cut_face_surface(body.model, separated_sides(body, d));
   REQUIRE(faces.num_triangles() > 0);
   const Walls walls = measure_walls(faces, d);
   MESSAGE("opened by 2 x " << d << " m: " << walls.triangles << " triangles, areas " << walls.area_above << " and " << walls.area_below

@@ -1,6 +1,7 @@
 // The opening of a cut (xfem/cut_opening.hpp): the jump of the field across the cut, summed
 // over it. Two fields whose jump is known in closed form, on the tilted plane through the unit
-// box of test_cut_faces.cpp (it crosses every column of tets and passes through no node):
+// box that test_cut_faces.cpp cuts too (tilted_plane_cut.hpp: it crosses every column of tets
+// and passes through no node):
 // - each side moved by d along the normal away from the plane (chapter 4's u_i and a_k): the
 //   jump is 2 d n at every point, so the normal opening is 2 d everywhere, V_gap = 2 d A_cut;
 // - an affine field u = G X, continuous (every enrichment 0): the jump across 2 eps is
@@ -12,6 +13,7 @@
 #include "kerf/mesh/point_locator.hpp"
 #include "kerf/xfem/cut_opening.hpp"
 
+#include "chapter_07/tilted_plane_cut.hpp"
 #include "support/cut_body.hpp"
 
 #include <doctest/doctest.h>
@@ -21,32 +23,7 @@
 
 namespace {
 
-const Eigen::Vector3d plane_point(0.5, 0.5, 0.43);
-const double plane_slope = 0.17;
-double area_in_box() { return std::sqrt(1.0 + plane_slope * plane_slope); }
-Eigen::Vector3d plane_normal() { return Eigen::Vector3d(-plane_slope, 0.0, 1.0).normalized(); }
-double height(const Eigen::Vector3d& x) { return (x - plane_point).dot(plane_normal()); }
-
-// The plane as a rectangle 3 m by 3 m about the box: two triangles, most of them outside it.
-kerf::TriangleSurface tilted_plane() {
-  const Eigen::Vector3d along_x(3.0, 0.0, 3.0 * plane_slope);
-  const Eigen::Vector3d corner = plane_point - 0.5 * along_x - Eigen::Vector3d(0.0, 1.5, 0.0);
-  return kerf::rectangle_surface(kerf::RectangleCut(corner, along_x, Eigen::Vector3d(0.0, 3.0, 0.0)));
-}
-
-// Each side moved by d along the normal away from the plane: u_i its home side's value, a_k the
-// other side's minus it.
-Eigen::VectorXd separated_sides(const support::CutBody& body, double d) {
-  const Eigen::Index N = body.mesh.num_nodes();
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes());
-  for (Eigen::Index i = 0; i < N; ++i) {
-    const Eigen::Vector3d side = (height(body.mesh.nodes.row(i).transpose()) > 0.0 ? d : -d) * plane_normal();
-    u.segment<3>(3 * i) = side;
-    for (int k = body.enrichment.first_enrichment[static_cast<std::size_t>(i)]; k < body.enrichment.first_enrichment[static_cast<std::size_t>(i) + 1]; ++k)
-      u.segment<3>(3 * (N + k)) = -2.0 * side;
-  }
-  return u;
-}
+using namespace tilted_cut;
 
 // The sub-triangles the box's boundary can cut through: its perimeter in the plane (two sides
 // of length 1, two of sqrt(1 + 0.17^2)) times a sub-triangle's diameter. The rectangle's
