@@ -262,7 +262,6 @@ private:
 
   // The model of the current cut (rebuilt by apply_cut), and what it refers to.
   std::unique_ptr<kerf::CutSurfaces> cuts_;
-  std::vector<kerf::TriangleSurface> sheet_surfaces_; // the sheets cuts_ was made of
   std::unique_ptr<kerf::MeshPieces> pieces_;
   std::unique_ptr<kerf::SurfaceEnrichment> enrichment_; // chapter 4's, without a "crack_tip" field
   std::unique_ptr<kerf::SceneCrackTip> crack_tip_;
@@ -399,7 +398,6 @@ void LiverCut::apply_cut() {
   for (const kerf::CutSheet& sheet : sheets_)
     if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
   Lap lap;
-  sheet_surfaces_ = surfaces;
   auto cuts = std::make_unique<kerf::CutSurfaces>(std::move(surfaces));
   // Only the tets near the quads added since the last rebuild can have new pieces: the others
   // keep theirs (recut_mesh_into_pieces).
@@ -674,7 +672,7 @@ void LiverCut::output_step(int step) {
   // half edge, from points 1e-6 of an edge either side of it. Where the points lie is found once
   // per change of topology (apply_cut drops the sampler), the jump at every step.
   if (!opening_sampler_)
-    opening_sampler_ = std::make_unique<kerf::CutOpeningSampler>(*model_, *locator_, sheet_surfaces_, opening_spacing_, 2e-6 * opening_spacing_);
+    opening_sampler_ = std::make_unique<kerf::CutOpeningSampler>(*model_, *locator_, cuts_->surfaces(), opening_spacing_, 2e-6 * opening_spacing_);
   const kerf::CutOpening opening = opening_sampler_->measure(state_.u);
   std::snprintf(row, sizeof row, "%d,%.17g,%.9e,%.9e,%.9e,%.9e,%.9e\n", step, state_.t, opening.area, opening.gap_volume,
                 opening.mean_opening(), opening.max_normal_opening, opening.max_jump);

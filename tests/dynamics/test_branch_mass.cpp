@@ -65,6 +65,29 @@ double smallest_eigenvalue(const Eigen::MatrixXd& A) {
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
 }
 
+
+// What every lumped mass M with branch rows must do on the slab, whatever the scheme: a rigid
+// translation has the kinetic energy of rho V (each piece's diagonal sums to rho V_p, round-off
+// as for the consistent mass), M is symmetric, its branch rows and columns are the consistent
+// mass M_c's (the design of lumped_mass.hpp), and its body force is M times "every phantom node
+// at g" (b'' = 0), with branch rows those of the model's gravity_load, rho int phi_j g.
+void check_lumped_branch_mass(const kerf::CutXfemModel& model, const Eigen::MatrixXd& M, const Eigen::MatrixXd& M_c,
+                              kerf::LumpingScheme scheme) {
+  const Eigen::Index b = first_branch_row(model);
+  const Eigen::Vector3d v(0.3, -0.2, 0.5);
+  const Eigen::VectorXd u = translation(model, v);
+  const double expected = 0.5 * rho * slab_volume * v.squaredNorm();
+  CHECK(std::abs(0.5 * u.dot(M * u) - expected) <= 1e-12 * expected);
+  CHECK((M - M.transpose()).norm() <= 1e-14 * M.norm());
+  CHECK((M.bottomRows(M.rows() - b) - M_c.bottomRows(M.rows() - b)).norm() <= 1e-14 * M_c.norm());
+  const Eigen::Vector3d g(0.0, 0.0, -9.81);
+  const Eigen::VectorXd f = kerf::lumped_gravity_load(model, rho, g, scheme, support::subtets);
+  CHECK((M * translation(model, g) - f).norm() <= 1e-12 * f.norm());
+  const Eigen::VectorXd consistent = model.gravity_load(rho, g);
+  CHECK((f.tail(f.size() - b) - consistent.tail(f.size() - b)).norm() <= 1e-12 * consistent.norm());
+  CHECK(consistent.tail(f.size() - b).norm() > 1e-3 * consistent.norm()); // the branch rows do pull
+}
+
 } // namespace
 
 TEST_CASE("the consistent mass with branch rows weighs rho V, is positive semi-definite with a definite branch block") {
@@ -193,15 +216,8 @@ TEST_CASE("the per-piece lumped masses with branch rows keep rho V, a positive b
       CAPTURE(order);
       CAPTURE(std::string(c.name));
       const Eigen::MatrixXd M = Eigen::MatrixXd(kerf::lump_cut_xfem_mass(model, rho, c.scheme, support::subtets));
-      const Eigen::Vector3d v(0.3, -0.2, 0.5);
-      const Eigen::VectorXd u = translation(model, v);
-      const double expected = 0.5 * rho * slab_volume * v.squaredNorm();
-      // Every piece's diagonal sums to its mass rho V_p (round-off, as for the consistent mass).
-      CHECK(std::abs(0.5 * u.dot(M * u) - expected) <= 1e-12 * expected);
-      CHECK((M - M.transpose()).norm() <= 1e-14 * M.norm());
-      // The branch rows and columns are the consistent mass's (the design of lumped_mass.hpp),
-      // so the branch diagonal is the consistent one, positive.
-      CHECK((M.bottomRows(M.rows() - b) - M_c.bottomRows(M.rows() - b)).norm() <= 1e-14 * M_c.norm());
+      check_lumped_branch_mass(model, M, M_c, c.scheme);
+      // The branch diagonal is the consistent one, positive.
       CHECK(M.diagonal().tail(M.rows() - b).minCoeff() > 0.0);
       // Positive semi-definite by construction (consistent tets with branch functions, lumped
       // others); definite, measured: smallest eigenvalue 2.2e-5 (Tet4) and 5.1e-6 (Tet10) of the
@@ -211,14 +227,6 @@ TEST_CASE("the per-piece lumped masses with branch rows keep rho V, a positive b
       const double largest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
       MESSAGE("order " << order << ", " << std::string(c.name) << ": smallest eigenvalue / largest " << smallest / largest);
       CHECK(smallest > 0.0);
-      // The body force: M times "every phantom node at g" (b'' = 0), its branch rows those of
-      // the model's gravity_load, rho int phi_j g.
-      const Eigen::Vector3d g(0.0, 0.0, -9.81);
-      const Eigen::VectorXd f = kerf::lumped_gravity_load(model, rho, g, c.scheme, support::subtets);
-      CHECK((M * translation(model, g) - f).norm() <= 1e-12 * f.norm());
-      const Eigen::VectorXd consistent = model.gravity_load(rho, g);
-      CHECK((f.tail(f.size() - b) - consistent.tail(f.size() - b)).norm() <= 1e-12 * consistent.norm());
-      CHECK(consistent.tail(f.size() - b).norm() > 1e-3 * consistent.norm()); // the branch rows do pull
     }
   }
 }
@@ -237,20 +245,9 @@ TEST_CASE("on a Tet4 slab with a crack tip and cheap rules the virtual-tet lumpe
   REQUIRE(b < 3 * model.num_dof_nodes());
   const Eigen::MatrixXd M_c = Eigen::MatrixXd(kerf::assemble_cut_xfem_mass(model, rho, support::subtets));
   const Eigen::MatrixXd M = Eigen::MatrixXd(kerf::lump_cut_xfem_mass(model, rho, kerf::LumpingScheme::virtual_tet, support::subtets));
-  const Eigen::Vector3d v(0.3, -0.2, 0.5);
-  const Eigen::VectorXd u = translation(model, v);
-  const double expected = 0.5 * rho * slab_volume * v.squaredNorm();
-  CHECK(std::abs(0.5 * u.dot(M * u) - expected) <= 1e-12 * expected);
-  CHECK((M - M.transpose()).norm() <= 1e-14 * M.norm());
-  CHECK((M.bottomRows(M.rows() - b) - M_c.bottomRows(M.rows() - b)).norm() <= 1e-14 * M_c.norm());
+  check_lumped_branch_mass(model, M, M_c, kerf::LumpingScheme::virtual_tet);
   // The phantom block is lumped elsewhere: the lumped mass is not the consistent one.
   CHECK((M.topRows(b) - M_c.topRows(b)).norm() > 1e-3 * M_c.norm());
-  const Eigen::Vector3d g(0.0, 0.0, -9.81);
-  const Eigen::VectorXd f = kerf::lumped_gravity_load(model, rho, g, kerf::LumpingScheme::virtual_tet, support::subtets);
-  CHECK((M * translation(model, g) - f).norm() <= 1e-12 * f.norm());
-  const Eigen::VectorXd consistent = model.gravity_load(rho, g);
-  CHECK((f.tail(f.size() - b) - consistent.tail(f.size() - b)).norm() <= 1e-12 * consistent.norm());
-  CHECK(consistent.tail(f.size() - b).norm() > 1e-3 * consistent.norm());
 }
 
 TEST_CASE("a slab with a crack tip and nothing held falls at g with Newmark, its enrichment DOFs staying zero") {

@@ -35,6 +35,8 @@ public:
 
   int num_surfaces() const { return static_cast<int>(surfaces_.size()); }
   const TriangleSurface& surface(int s) const { return surfaces_[static_cast<std::size_t>(s)]; }
+  /// All of them, in order.
+  const std::vector<TriangleSurface>& surfaces() const { return surfaces_; }
   /// The total number of triangles of all surfaces.
   Eigen::Index num_triangles() const;
 
