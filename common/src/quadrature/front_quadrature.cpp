@@ -117,8 +117,10 @@ Eigen::Vector3d front_direction(const CrackFronts& fronts, const std::vector<Fro
 // smooth, along the opposite edge or face, and Gauss converges slowly. So the opposite edge
 // (face) is split until each part lies at least its own length from the front's line (at most
 // 12 times): the parts shrink geometrically towards the near point, and Gauss converges at a
-// fixed rate on each.
-constexpr int max_grading = 12;
+// fixed rate on each. The number of halvings is capped (default_front_grading, 12); where the
+// front runs along a face of a cell, the parts near it multiply with every halving, and a cut
+// made of many small triangles (chapter 7's sheets) can reach 15 million points in one tet
+// with 12: a smaller cap trades that for a coarser rule near the face.
 
 double segment_line_distance(const Line3& line, const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
   // The distance to the line is convex along the segment: a few golden-section steps are
@@ -133,19 +135,19 @@ double segment_line_distance(const Line3& line, const Eigen::Vector3d& v, const 
 }
 
 void append_graded_edge(const Line3& line, const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, const Eigen::Vector3d& v,
-                        const Eigen::Vector3d& w, const Line& g, double min_volume, int depth, PieceQuadratureRule& rule) {
+                        const Eigen::Vector3d& w, const Line& g, double min_volume, int depth, int max_grading, PieceQuadratureRule& rule) {
   if (tet_volume(q0, q1, v, w) <= min_volume) return; // an edge through q1: no volume to grade
   if (depth < max_grading && segment_line_distance(line, v, w) < (w - v).norm()) {
     const Eigen::Vector3d m = 0.5 * (v + w);
-    append_graded_edge(line, q0, q1, v, m, g, 0.5 * min_volume, depth + 1, rule);
-    append_graded_edge(line, q0, q1, m, w, g, 0.5 * min_volume, depth + 1, rule);
+    append_graded_edge(line, q0, q1, v, m, g, 0.5 * min_volume, depth + 1, max_grading, rule);
+    append_graded_edge(line, q0, q1, m, w, g, 0.5 * min_volume, depth + 1, max_grading, rule);
     return;
   }
   append_edge_collapsed(q0, q1, v, w, g, min_volume, rule);
 }
 
 void append_graded_corner(const Line3& line, const Eigen::Vector3d& q0, const Eigen::Vector3d& P1, const Eigen::Vector3d& P2,
-                          const Eigen::Vector3d& P3, const Line& g, const Line& g1, double min_volume, int depth,
+                          const Eigen::Vector3d& P3, const Line& g, const Line& g1, double min_volume, int depth, int max_grading,
                           PieceQuadratureRule& rule) {
   if (tet_volume(q0, P1, P2, P3) <= min_volume) return; // a fan triangle of collinear corners
   const double size = std::max({(P2 - P1).norm(), (P3 - P2).norm(), (P1 - P3).norm()});
@@ -158,7 +160,7 @@ void append_graded_corner(const Line3& line, const Eigen::Vector3d& q0, const Ei
     const Eigen::Vector3d m12 = 0.5 * (P1 + P2), m23 = 0.5 * (P2 + P3), m31 = 0.5 * (P3 + P1);
     for (const auto& [a, b, c] : {std::array<Eigen::Vector3d, 3>{P1, m12, m31}, std::array<Eigen::Vector3d, 3>{m12, P2, m23},
                                  std::array<Eigen::Vector3d, 3>{m31, m23, P3}, std::array<Eigen::Vector3d, 3>{m12, m23, m31}})
-      append_graded_corner(line, q0, a, b, c, g, g1, 0.25 * min_volume, depth + 1, rule);
+      append_graded_corner(line, q0, a, b, c, g, g1, 0.25 * min_volume, depth + 1, max_grading, rule);
     return;
   }
   append_corner_collapsed(q0, P1, P2, P3, g, g1, min_volume, rule);
@@ -172,8 +174,9 @@ double distance_to_plane_of(const std::vector<Eigen::Vector3d>& polygon, const E
 } // namespace
 
 PieceQuadratureRule front_collapsed_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece,
-                                         const CrackFronts& fronts, int n) {
+                                         const CrackFronts& fronts, int n, int grading) {
   if (n < 1 || n > 8) throw std::invalid_argument("front_collapsed_rule: n must be in 1..8");
+  if (grading < 0 || grading > default_front_grading) throw std::invalid_argument("front_collapsed_rule: grading must be in 0..12");
   const Line g(n), g1(n, 1);
   const double tolerance = 1e-10 * pieces.diameter;
   const double min_volume = 1e-14 * pieces.volume;
@@ -206,9 +209,9 @@ PieceQuadratureRule front_collapsed_rule(const Eigen::Matrix<double, 4, 3>& X, c
       const std::vector<Eigen::Vector3d>& P = face.polygon;
       if (P.size() < 3 || distance_to_plane_of(P, q0) <= tolerance) continue;
       if (segment && distance_to_plane_of(P, q1) <= tolerance) {
-        for (std::size_t k = 0; k < P.size(); ++k) append_graded_edge(line, q0, q1, P[k], P[(k + 1) % P.size()], g, min_volume, 0, rule);
+        for (std::size_t k = 0; k < P.size(); ++k) append_graded_edge(line, q0, q1, P[k], P[(k + 1) % P.size()], g, min_volume, 0, grading, rule);
       } else {
-        for (std::size_t k = 1; k + 1 < P.size(); ++k) append_graded_corner(line, q0, P[0], P[k], P[k + 1], g, g1, min_volume, 0, rule);
+        for (std::size_t k = 1; k + 1 < P.size(); ++k) append_graded_corner(line, q0, P[0], P[k], P[k + 1], g, g1, min_volume, 0, grading, rule);
       }
     }
   }

@@ -171,7 +171,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
         // A front tet no cut triangle meets: the front lies in a face of it whose cut chapter 4
         // gave to the tet on the other side (issue 10 item 6); it is collapsed all the same.
         const PieceQuadratureRule r = front_tet && tip->front_rule == FrontRule::collapsed
-                                          ? front_collapsed_rule(X, whole, 0, tip->fronts, front_points)
+                                          ? front_collapsed_rule(X, whole, 0, tip->fronts, front_points, tip->front_grading)
                                           : near_front_graded_rule(whole, 0, tip->fronts, tip->blending_degree, tip->blending_depth);
         data.push_back(new_piece(0, rule_points(r.points, r.weights, 1.0, false)));
       } else {
@@ -179,7 +179,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
         for (int p = 0; p < np; ++p) {
           PieceQuadratureRule r;
           if (front_tet && tip->front_rule == FrontRule::collapsed)
-            r = front_collapsed_rule(X, tet_pieces, p, tip->fronts, front_points);
+            r = front_collapsed_rule(X, tet_pieces, p, tip->fronts, front_points, tip->front_grading);
           else if (front_tet)
             r = refined_subtet_rule(tet_pieces, p, 2 * front_points - 1, 1);
           else
@@ -787,6 +787,42 @@ Eigen::Matrix3d CutXfemModel::displacement_gradient_at(const Eigen::VectorXd& u,
   for (Eigen::Index j = 0; j < phi.cols(); ++j)
     H += u.segment<3>(3 * slots_(t, first_branch + static_cast<int>(j))) * phi.block<3, 1>(1, j).transpose();
   return H;
+}
+
+CutXfemModel::FunctionsAt CutXfemModel::functions_at(Eigen::Index t, const Eigen::Vector3d& x, int p) const {
+  FunctionsAt result;
+  if (p < 0) p = piece_at(t, x);
+  if (p < 0) return result;
+  const int n = mesh_.nodes_per_tet();
+  const Piece& piece = integrated_pieces(t)[static_cast<std::size_t>(p)];
+  const Corners X = tet_corners(mesh_, t);
+  const Eigen::Matrix3d J_inverse = corner_jacobian(X).inverse();
+  const Eigen::Vector3d xi = J_inverse * (x - X.row(0).transpose());
+  const Eigen::VectorXd N = mesh_.order() == 1 ? Eigen::VectorXd(tet4_shape(xi)) : Eigen::VectorXd(tet10_shape(xi));
+  const Eigen::MatrixX3d G = mesh_.order() == 1 ? Eigen::MatrixX3d(tet4_shape_gradients() * J_inverse)
+                                                : Eigen::MatrixX3d(tet10_shape_gradients(xi) * J_inverse);
+  const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
+  Eigen::Matrix<double, 4, Eigen::Dynamic> phi;
+  if (first_branch >= 0) phi = branch_functions_at(t, x, piece.side);
+  const Eigen::Index size = 2 * n + phi.cols();
+  result.dof_node.reserve(static_cast<std::size_t>(size));
+  result.value.resize(size);
+  result.gradient.resize(size, 3);
+  Eigen::Index j = 0;
+  const auto add = [&](int node, double value, const Eigen::RowVector3d& gradient) {
+    result.dof_node.push_back(node);
+    result.value[j] = value;
+    result.gradient.row(j++) = gradient;
+  };
+  // The phantom element: u_p,a = u_a + a_k (the class comment), so N_a acts on both.
+  for (int a = 0; a < n; ++a) {
+    add(mesh_.tets(t, a), N[a], G.row(a));
+    if (const int s = piece.enrichment_slot[static_cast<std::size_t>(a)]; s >= 0) add(slots_(t, s), N[a], G.row(a));
+  }
+  for (Eigen::Index b = 0; b < phi.cols(); ++b) add(slots_(t, first_branch + static_cast<int>(b)), phi(0, b), phi.block<3, 1>(1, b).transpose());
+  result.value.conservativeResize(j);
+  result.gradient.conservativeResize(j, 3);
+  return result;
 }
 
 DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions, double sliver_fraction) {

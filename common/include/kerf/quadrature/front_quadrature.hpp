@@ -46,6 +46,9 @@
 
 namespace kerf {
 
+/// How often the collapsed rule halves a face or edge near the front's line at most, by default.
+inline constexpr int default_front_grading = 12;
+
 /// The collapsed rule of piece `piece` of tet X with n Gauss points in each direction of each
 /// collapsed sub-tet (n^3 per sub-tet), and Gauss rules of degree 2n - 1 on the cells the front
 /// does not touch.
@@ -55,9 +58,11 @@ namespace kerf {
 /// @param piece  which piece
 /// @param fronts the fronts (only their segments inside X matter, front_in_tet)
 /// @param n      points per direction, 1 <= n <= 8
-/// @throws std::invalid_argument for n out of range
+/// @param grading how often at most a face or edge near the front's line is halved towards it,
+///               0 <= grading <= default_front_grading
+/// @throws std::invalid_argument for n or grading out of range
 PieceQuadratureRule front_collapsed_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece,
-                                         const CrackFronts& fronts, int n);
+                                         const CrackFronts& fronts, int n, int grading = default_front_grading);
 
 /// A rule for a piece of a tet near the front that the front does not cross (a blending tet,
 /// or a tet behind the front with branch nodes): the functions are smooth there, but at a

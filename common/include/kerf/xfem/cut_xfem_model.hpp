@@ -7,6 +7,7 @@
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/fem/linear_material.hpp"
+#include "kerf/quadrature/front_quadrature.hpp"
 #include "kerf/quadrature/piece_quadrature_rule.hpp"
 #include "kerf/solve/linear_solver.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
@@ -52,6 +53,9 @@ struct CrackTipFunctions {
   /// there, but no polynomials, and steep close to the front.
   int blending_degree = 6;
   int blending_depth = 3; ///< how often a sub-tet nearer the front than its size may be refined
+  /// How often the collapsed rule halves a face near the front's line at most
+  /// (front_collapsed_rule's grading, 0 to 12).
+  int front_grading = default_front_grading;
 };
 
 /// A Tet4 or Tet10 mesh cut by triangle-mesh cuts, enriched on the one-ring.
@@ -145,6 +149,18 @@ public:
   /// The same for a point known to lie on side `side` (+1 above, -1 below, 0 not known) of the
   /// cut, which may lie on the cut itself: F_1 then takes that side's value (theta = side pi).
   std::vector<std::pair<int, double>> branch_values_on_side(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
+  /// The functions the field is made of at x: their DOF nodes, values and gradients.
+  struct FunctionsAt {
+    std::vector<int> dof_node; ///< one entry per function (a DOF node may appear twice: u_a and a_k share N_a)
+    Eigen::VectorXd value;     ///< its value at x
+    Eigen::MatrixX3d gradient; ///< its gradient at x (m^-1), one row per function
+  };
+  /// Every function acting at x (m) in tet t on piece p (-1: the piece piece_at finds): N_a on
+  /// node a and on the enrichment active there for the piece's phantom node, and the branch
+  /// functions. The field at x is sum_j value_j q_(dof_node j) and its gradient
+  /// sum_j q_(dof_node j) gradient_j^T: displacement_at and displacement_gradient_at one DOF node at
+  /// a time, for a map that is linear in q (cut_state_transfer.hpp). Empty if x is not in tet t.
+  FunctionsAt functions_at(Eigen::Index t, const Eigen::Vector3d& x, int p = -1) const;
   /// Every quadrature point tet t is integrated at, with the value there of each of its slots'
   /// functions: visit(p, w, g) for each point of each piece p that tet t integrates (one piece
   /// for a tet integrated whole), w its weight (m^3), g one value per slot (the slots of row t of
