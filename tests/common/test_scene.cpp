@@ -132,6 +132,10 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "crack_tip": {"radius": -0.01}})", "crack_tip.radius"},
       {"{" + m + R"(, "crack_tip": {"radius": "far"}})", "crack_tip.radius"},
       {"{" + m + R"(, "crack_tip": {"radius": 0.01, "shifted": true}})", "crack_tip.shifted"},
+      {"{" + m + R"(, "crack_tip": {"front_points": 0}})", "crack_tip.front_points"},
+      {"{" + m + R"(, "crack_tip": {"front_points": 2.5}})", "crack_tip.front_points"},
+      {"{" + m + R"(, "crack_tip": {"front_grading": 13}})", "crack_tip.front_grading"},
+      {"{" + m + R"(, "crack_tip": {"front_grading": -1}})", "crack_tip.front_grading"},
       {R"({"mesh": {"box": {"min": [0,0,0], "max": [1,1,1], "cells": [1, 0, 1]}}})", "mesh.box.cells[1]"},
       {R"({"mesh": {"box": {"min": [0,0,0], "max": [1,0,1], "cells": [1, 1, 1]}}})", "mesh.box.max"},
       {R"({"mesh": {"box": {"min": [0,0], "max": [1,1,1], "cells": [1, 1, 1]}}})", "mesh.box.min"},
@@ -208,6 +212,11 @@ TEST_CASE("the crack_tip field of chapter 5: branch by default, a radius only wh
   CHECK(topological.crack_tip.given);
   REQUIRE(topological.crack_tip.radius.has_value());
   CHECK(*topological.crack_tip.radius == 0.0);
+  CHECK(topological.crack_tip.front_points == 0);   // the model's default
+  CHECK(topological.crack_tip.front_grading == 12); // front_quadrature.hpp's default
+  const kerf::Scene cheap = kerf::parse_scene("{" + m + R"(, "crack_tip": {"front_points": 2, "front_grading": 4}})", "cheap.json", "/data");
+  CHECK(cheap.crack_tip.front_points == 2);
+  CHECK(cheap.crack_tip.front_grading == 4);
   const kerf::Scene none = kerf::parse_scene("{" + m + R"(, "crack_tip": {"enrichment": "none"}})", "none.json", "/data");
   CHECK(none.crack_tip.enrichment == "none");
   CHECK_THROWS_WITH_AS(kerf::require_features(topological, {.corotational = true, .cuts = true, .cut_quadrature = true}),

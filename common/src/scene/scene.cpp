@@ -1,5 +1,7 @@
 #include "kerf/scene/scene.hpp"
 
+#include "kerf/quadrature/front_quadrature.hpp"
+
 #include "kerf/app/input_error.hpp"
 #include "kerf/mesh/liver_mesh.hpp"
 #include "kerf/solve/cholmod_ordering.hpp"
@@ -439,7 +441,7 @@ CrackTipSpec read_crack_tip(const ObjectReader& r) {
   if (!r.has("crack_tip")) return spec;
   spec.given = true;
   ObjectReader c(r.at("crack_tip"), "crack_tip", r.file());
-  c.allow_only({"enrichment", "radius", "blending"});
+  c.allow_only({"enrichment", "radius", "blending", "front_points", "front_grading"});
   spec.enrichment = c.text("enrichment", spec.enrichment);
   if (spec.enrichment != "branch" && spec.enrichment != "none")
     c.fail("crack_tip.enrichment", "expected \"branch\" or \"none\", got \"" + spec.enrichment + "\"");
@@ -450,6 +452,12 @@ CrackTipSpec read_crack_tip(const ObjectReader& r) {
   spec.blending = c.text("blending", spec.blending);
   if (spec.blending != "corrected" && spec.blending != "none")
     c.fail("crack_tip.blending", "expected \"corrected\" or \"none\", got \"" + spec.blending + "\"");
+  spec.front_points = c.integer("front_points", spec.front_points);
+  if (c.has("front_points") && (spec.front_points < 1 || spec.front_points > 8))
+    c.fail("crack_tip.front_points", "expected an integer from 1 to 8 (points per direction of each collapsed sub-tet)");
+  spec.front_grading = c.integer("front_grading", spec.front_grading);
+  if (spec.front_grading < 0 || spec.front_grading > default_front_grading)
+    c.fail("crack_tip.front_grading", "expected an integer from 0 to 12 (halvings towards the front)");
   return spec;
 }
 

@@ -28,7 +28,9 @@ SceneCrackTip::SceneCrackTip(const Scene& scene, const TetMesh& mesh, const Mesh
   // tests/chapter_05/test_crack_tip_model.cpp depths 1 and 3 reproduce the exact field to 2.1e-5
   // and 1.1e-6, where the demo's Tet4 mesh misses its conforming reference by percents.
   if (branch_enrichment_->num_branch_nodes() > 0)
-    functions_.emplace(CrackTipFunctions{.enrichment = *branch_enrichment_, .fronts = fronts_, .blending_depth = 1});
+    functions_.emplace(CrackTipFunctions{
+        .enrichment = *branch_enrichment_, .fronts = fronts_, .front_points = scene.crack_tip.front_points, .blending_depth = 1,
+        .front_grading = scene.crack_tip.front_grading});
 }
 
 } // namespace kerf

@@ -101,6 +101,16 @@ struct CrackTipSpec {
   /// "none": Paulus's blending, the branch nodes' functions as they are; "corrected": Fries's
   /// ramp over the blending tets (branch_enrichment.hpp), linear model only.
   std::string blending = "none";
+  /// Points per direction of each collapsed sub-tet in the tets a front crosses (n^3 per
+  /// sub-tet, CrackTipFunctions::front_points); 0, not given: the model's default (4 on a Tet4,
+  /// 6 on a Tet10). Chapter 7's rebuilds take 2: a tet its wavy sheet's front crosses splits into
+  /// about 1400 sub-tets, so 4 gives 90 000 points per tet.
+  int front_points = 0;
+  /// How often the collapsed rule halves a face near the front's line at most
+  /// (CrackTipFunctions::front_grading, 0 to 12; default 12). Chapter 7's rebuilds take 4: where
+  /// a front made of small segments runs along the faces of a tet's cells, 12 gave one tet of
+  /// its 1000-tet liver 15 million points.
+  int front_grading = 12;
   bool given = false; ///< the scene has a "crack_tip" field (chapters before 5 refuse it)
 };
 
