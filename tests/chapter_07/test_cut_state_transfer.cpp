@@ -14,12 +14,16 @@
 #include "kerf/mesh/tet_neighbours.hpp"
 #include "kerf/xfem/cut_state_transfer.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
+#include "kerf/xfem/crack_tip_body.hpp"
+#include "kerf/mesh/node_region.hpp"
+#include "kerf/fem/dof_map.hpp"
 
 #include "support/cut_body.hpp"
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -283,4 +287,86 @@ TEST_CASE("cut state transfer: a vector of the wrong size, or models on differen
   const kerf::TetMesh other = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {4, 4, 4});
   const CutModel elsewhere(other, {sheets.a_long}, std::make_shared<const kerf::TetNeighbours>(kerf::tet_neighbours(other)));
   CHECK_THROWS_AS(kerf::transfer_cut_state(short_cut.model, elsewhere.model, Eigen::VectorXd::Zero(n)), std::invalid_argument);
+}
+
+namespace {
+
+// The L2 norm of the field of u on `model`, and of its difference to the field of w on `other`,
+// over every tet, at the model's own quadrature points.
+std::pair<double, double> field_norms(const kerf::CutXfemModel& model, const Eigen::VectorXd& u, const kerf::CutXfemModel& other,
+                                      const Eigen::VectorXd& w) {
+  const kerf::TetMesh& mesh = model.mesh();
+  double norm = 0.0, difference = 0.0;
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
+    model.for_each_slot_value(t, [&](int, double weight, const Eigen::VectorXd& g) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int a = 0; a < mesh.nodes_per_tet(); ++a) x += g[a] * mesh.nodes.row(mesh.tets(t, a)).transpose();
+      const Eigen::Vector3d here = model.displacement_at(u, t, x), there = other.displacement_at(w, t, x);
+      norm += weight * here.squaredNorm();
+      difference += weight * (here - there).squaredNorm();
+    });
+  return {std::sqrt(norm), std::sqrt(difference)};
+}
+
+} // namespace
+
+TEST_CASE("cut state transfer with branch functions: the fit near the front keeps the energies, keeping the branch values does not") {
+  // The box pulled open across sheet A (y = 0.47 behind the front, x < 0.45): the face y = 0
+  // held, the face y = 1 lifted by 1 cm, solved on the short cut; then the sheet grows to the
+  // long cut (front at x ~ 0.75) and the state is carried over, the static field as the
+  // displacement and, to weigh the kinetic energy, as the velocity too. Branch functions on the
+  // topological rule, with the blending rules chapter 7 uses (graded once, scene_crack_tip.hpp).
+  const kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {5, 5, 5});
+  const Sheets sheets = make_sheets();
+  const kerf::BranchRules rules{.blending_depth = 1};
+  const kerf::CrackTipBody short_cut(mesh, {sheets.a_short}, tissue, kerf::TipTreatment::topological, 0.0, rules);
+  const kerf::CrackTipBody long_cut(mesh, {sheets.a_long}, tissue, kerf::TipTreatment::topological, 0.0, rules);
+  REQUIRE(short_cut.branch() != nullptr);
+  REQUIRE(long_cut.branch() != nullptr);
+  kerf::NodeRegion bottom, top;
+  bottom.box_max = {1, 0, 1};
+  top.box_min = {0, 1, 0};
+  top.box_max = {1, 1, 1};
+  const std::vector<kerf::DirichletNodes> held{{kerf::nodes_in_region(mesh, bottom), {0, 0, 0}}, {kerf::nodes_in_region(mesh, top), {0, 0.01, 0}}};
+  const kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(short_cut.model(), held);
+  const Eigen::VectorXd u_old =
+      kerf::solve_linear_cut_xfem(short_cut.model(), dofs, Eigen::VectorXd::Zero(3 * short_cut.model().num_dof_nodes()), kerf::SolverSettings{});
+  REQUIRE(u_old.allFinite());
+
+  const kerf::DofMap new_dofs = kerf::make_cut_xfem_dof_map(long_cut.model(), held);
+  const auto start = std::chrono::steady_clock::now();
+  const kerf::CutStateTransfer fit(short_cut.model(), long_cut.model(), kerf::BranchStateRule::fit, &new_dofs);
+  const Eigen::VectorXd u_fit = fit(u_old);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const Eigen::VectorXd u_kept = kerf::CutStateTransfer(short_cut.model(), long_cut.model(), kerf::BranchStateRule::keep_values)(u_old);
+  REQUIRE(u_fit.allFinite());
+  REQUIRE(fit.num_fitted() > 0);
+
+  const auto change = [&](bool corotated, const Eigen::VectorXd& u_new) {
+    return long_cut.model().energy(u_new, corotated) / short_cut.model().energy(u_old, corotated) - 1.0;
+  };
+  const auto kinetic_change = [&](const Eigen::VectorXd& v_new) {
+    return kinetic(kerf::assemble_cut_xfem_mass(long_cut.model(), tissue.density, support::subtets), v_new) /
+               kinetic(kerf::assemble_cut_xfem_mass(short_cut.model(), tissue.density, support::subtets), u_old) -
+           1.0;
+  };
+  const auto [norm, error_fit] = field_norms(long_cut.model(), u_fit, short_cut.model(), u_old);
+  const double error_kept = field_norms(long_cut.model(), u_kept, short_cut.model(), u_old).second;
+  const double linear_fit = change(false, u_fit), corotated_fit = change(true, u_fit), kinetic_fit = kinetic_change(u_fit);
+  const double linear_kept = change(false, u_kept), kinetic_kept = kinetic_change(u_kept);
+  MESSAGE("branch transfer (" << ms << " ms, " << fit.num_fitted() << " DOF nodes fitted at " << fit.num_fit_points()
+                              << " points): elastic energy change " << linear_fit << " linear, " << corotated_fit << " corotated, kinetic "
+                              << kinetic_fit << "; with the values kept " << linear_kept << " and " << kinetic_kept
+                              << "; L2 field error " << error_fit / norm << " fitted, " << error_kept / norm << " kept");
+  // Measured: +0.19 % elastic (linear), the kinetic energy as printed; the old rule +132 %. A
+  // change of 1 % at a rebuild is what the fit is held to: small against the dissipation of a
+  // step of chapter 7's damped run, and five times the measured one.
+  CHECK(std::abs(linear_fit) < 0.01);
+  CHECK(std::abs(corotated_fit) < 0.01);
+  CHECK(std::abs(kinetic_fit) < 0.01);
+  CHECK(linear_kept > 0.5); // the baseline the fit replaces does inject energy
+  CHECK(error_fit < error_kept);
+  // The held DOFs keep their prescribed values: the standard DOFs of the held nodes are u_old's.
+  for (const kerf::DirichletNodes& condition : held)
+    for (const int v : condition.nodes) CHECK(u_fit.segment<3>(3 * v) == u_old.segment<3>(3 * v));
 }
