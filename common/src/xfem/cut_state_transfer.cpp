@@ -1,5 +1,6 @@
 #include "kerf/xfem/cut_state_transfer.hpp"
 
+#include "kerf/cut/clip_tet.hpp"
 #include "kerf/cut/convex_cell.hpp"
 
 #include <Eigen/Sparse>
@@ -15,9 +16,9 @@ namespace kerf {
 // The fit near the front (the header's comment). The unknowns c are the new model's DOF nodes
 // (standard, sign and branch) that act in a tet with branch functions, before or after, except
 // the held ones; every other DOF node keeps the value the rule of phantom values gives it. Over
-// the tets R any unknown acts in, at the new model's own quadrature points (for_each_slot_value),
+// the tets R any unknown acts in, at the new model's own quadrature points (for_each_slot_gradient),
 // with (g_U, G_U) and (g_F, G_F) the values and gradients of the unknown and the fixed new
-// functions and (h, H) those of the old functions (functions_at of either model), and the
+// functions and (h, H) those of the old functions (the old model's functions_at), and the
 // error e = g_U^T c + g_F^T p - h^T q_old (p the fixed new DOFs):
 //
 //   min sum_q w_q (|grad e|^2 + |e|^2 / l^2)   =>   M c = B_old q_old - B_fixed p,
@@ -132,11 +133,16 @@ std::unique_ptr<CutStateTransfer::Fit> CutStateTransfer::make_fit(const CutXfemM
   const TetMesh& mesh = to.mesh();
   const int n = mesh.nodes_per_tet();
   const TetMatrix& slots = to.assembly_slots();
-  // The unknowns: the slots of every tet with branch functions, but the held DOF nodes.
+  // The unknowns: the slots of every tet with branch functions, but the held DOF nodes; and
+  // those tets' volume, for l below.
   std::vector<int> unknown(static_cast<std::size_t>(to.num_dof_nodes()), -1);
   auto fit = std::make_unique<CutStateTransfer::Fit>();
+  double volume = 0.0;
+  int counted = 0;
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     if (!to.has_branch_functions(t) && !from.has_branch_functions(t)) continue;
+    volume += std::abs(signed_tet_volume(tet_corners(mesh, t)));
+    ++counted;
     for (int s = 0; s < num_slots(slots, t); ++s) {
       if (held && is_held(*held, slots(t, s))) continue;
       int& k = unknown[static_cast<std::size_t>(slots(t, s))];
@@ -154,14 +160,6 @@ std::unique_ptr<CutStateTransfer::Fit> CutStateTransfer::make_fit(const CutXfemM
   // piece whose DOFs are all unknowns could otherwise translate freely) and keeps the field from
   // drifting where the gradients say little; measured on the box of tests/chapter_07, weights of
   // 0.1 and 1 on it changed the elastic energy at a change of the cut by -1.8 % and +0.2 %.
-  double volume = 0.0;
-  int counted = 0;
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    if (!to.has_branch_functions(t) && !from.has_branch_functions(t)) continue;
-    const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
-    volume += std::abs((X.row(1) - X.row(0)).dot((X.row(2) - X.row(0)).cross(X.row(3) - X.row(0)))) / 6.0;
-    ++counted;
-  }
   const double inverse_length_squared = std::pow(volume / counted, -2.0 / 3.0);
 
   std::vector<Eigen::Triplet<double>> M_entries, old_entries, fixed_entries;
@@ -175,31 +173,18 @@ std::unique_ptr<CutStateTransfer::Fit> CutStateTransfer::make_fit(const CutXfemM
       acts = acts || local[static_cast<std::size_t>(s)] >= 0;
     }
     if (!acts) continue;
-    const auto slot_of = [&](int node) {
-      for (int s = 0; s < width; ++s)
-        if (slots(t, s) == node) return s;
-      throw std::logic_error("CutStateTransfer: a function of the new model outside its tet's slots");
-    };
     // Per tet, dense: A_t on the new slots, B_t against the old DOF nodes met in this tet, of
-    // the inner product (e, f) = int grad e : grad f + e . f / l^2 of the header's fit.
+    // the inner product (e, f) = int grad e : grad f + e . f / l^2 of the header's fit. The new
+    // functions come as the model stored them at its points; the old ones are evaluated there.
     Eigen::MatrixXd A_t = Eigen::MatrixXd::Zero(width, width);
     std::vector<int> old_nodes;
     Eigen::MatrixXd B_t = Eigen::MatrixXd::Zero(width, 0);
-    Eigen::VectorXd v_new(width);
-    Eigen::MatrixX3d G_new(width, 3);
-    to.for_each_slot_value(t, [&](int p, double w, const Eigen::VectorXd& g) {
+    to.for_each_slot_gradient(t, [&](int, double w, const Eigen::VectorXd& v_new, const Eigen::MatrixX3d& G_new) {
       ++fit->points;
       Eigen::Vector3d x = Eigen::Vector3d::Zero(); // sum_a N_a x_a: the point, on straight-edged tets
-      for (int a = 0; a < n; ++a) x += g[a] * mesh.nodes.row(mesh.tets(t, a)).transpose();
-      const CutXfemModel::FunctionsAt now = to.functions_at(t, x, p), before = from.functions_at(t, x);
+      for (int a = 0; a < n; ++a) x += v_new[a] * mesh.nodes.row(mesh.tets(t, a)).transpose();
+      const CutXfemModel::FunctionsAt before = from.functions_at(t, x);
       if (before.dof_node.empty()) throw std::logic_error("CutStateTransfer: a quadrature point lies outside its tet");
-      v_new.setZero();
-      G_new.setZero();
-      for (std::size_t j = 0; j < now.dof_node.size(); ++j) {
-        const int s = slot_of(now.dof_node[j]);
-        v_new[s] += now.value[static_cast<Eigen::Index>(j)];
-        G_new.row(s) += now.gradient.row(static_cast<Eigen::Index>(j));
-      }
       A_t.noalias() += w * (G_new * G_new.transpose() + inverse_length_squared * v_new * v_new.transpose());
       for (std::size_t j = 0; j < before.dof_node.size(); ++j) {
         const int node = before.dof_node[j];

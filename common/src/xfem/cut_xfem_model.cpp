@@ -225,7 +225,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
           for (Eigen::Index r = 0; r < rows; ++r) {
             const std::size_t q = static_cast<std::size_t>(begin + r);
             const double w = piece.points[q].weight;
-            branch_tet_gradients(t, piece, q, g);
+            slot_gradients(t, piece, q, g);
             vec_g.row(r) = g.transpose().reshaped().transpose();
             weighted.row(r) = w * vec_g.row(r);
             piece.mean_gradient += w * g;
@@ -455,25 +455,39 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
   if (assembler) assembler->add_element_matrix(t, K_e, *rhs_free);
 }
 
-void CutXfemModel::for_each_slot_value(Eigen::Index t, const std::function<void(int, double, const Eigen::VectorXd&)>& visit) const {
+void CutXfemModel::slot_values(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::VectorXd& g) const {
   const int n = mesh_.nodes_per_tet();
   const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
+  const Point& point = piece.points[q];
+  g.setZero();
+  for (int a = 0; a < n; ++a) {
+    g[a] += point.N[a];
+    if (const int s = piece.enrichment_slot[static_cast<std::size_t>(a)]; s >= 0) g[s] += point.N[a];
+  }
+  for (Eigen::Index j = 0; j < piece.branch_value.cols(); ++j) g[first_branch + j] = piece.branch_value(static_cast<Eigen::Index>(q), j);
+}
+
+void CutXfemModel::for_each_slot_value(Eigen::Index t, const std::function<void(int, double, const Eigen::VectorXd&)>& visit) const {
   const std::span<const Piece> integrated = integrated_pieces(t);
   Eigen::VectorXd g(num_slots(t));
-  for (std::size_t p = 0; p < integrated.size(); ++p) {
-    const Piece& piece = integrated[p];
-    for (std::size_t q = 0; q < piece.points.size(); ++q) {
-      const Point& point = piece.points[q];
-      g.setZero();
-      for (int a = 0; a < n; ++a) {
-        g[a] += point.N[a];
-        if (const int s = piece.enrichment_slot[static_cast<std::size_t>(a)]; s >= 0) g[s] += point.N[a];
-      }
-      for (Eigen::Index j = 0; j < piece.branch_value.cols(); ++j)
-        g[first_branch + j] = piece.branch_value(static_cast<Eigen::Index>(q), j);
-      visit(static_cast<int>(p), point.weight, g);
+  for (std::size_t p = 0; p < integrated.size(); ++p)
+    for (std::size_t q = 0; q < integrated[p].points.size(); ++q) {
+      slot_values(t, integrated[p], q, g);
+      visit(static_cast<int>(p), integrated[p].points[q].weight, g);
     }
-  }
+}
+
+void CutXfemModel::for_each_slot_gradient(
+    Eigen::Index t, const std::function<void(int, double, const Eigen::VectorXd&, const Eigen::MatrixX3d&)>& visit) const {
+  const std::span<const Piece> integrated = integrated_pieces(t);
+  Eigen::VectorXd g(num_slots(t));
+  Eigen::MatrixX3d G(num_slots(t), 3);
+  for (std::size_t p = 0; p < integrated.size(); ++p)
+    for (std::size_t q = 0; q < integrated[p].points.size(); ++q) {
+      slot_values(t, integrated[p], q, g);
+      slot_gradients(t, integrated[p], q, G);
+      visit(static_cast<int>(p), integrated[p].points[q].weight, g, G);
+    }
 }
 
 int CutXfemModel::num_slots(Eigen::Index t) const {
@@ -482,7 +496,7 @@ int CutXfemModel::num_slots(Eigen::Index t) const {
   return slots;
 }
 
-void CutXfemModel::branch_tet_gradients(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::MatrixX3d& g) const {
+void CutXfemModel::slot_gradients(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::MatrixX3d& g) const {
   const int n = mesh_.nodes_per_tet();
   const int first_branch = first_branch_slot_[static_cast<std::size_t>(t)];
   const Point& point = piece.points[q];
@@ -492,6 +506,7 @@ void CutXfemModel::branch_tet_gradients(Eigen::Index t, const Piece& piece, std:
     const int s = piece.enrichment_slot[static_cast<std::size_t>(a)];
     if (s >= 0) g.row(s) += point.G.row(a);
   }
+  if (first_branch < 0) return;
   for (Eigen::Index j = 0; first_branch + j < g.rows(); ++j)
     g.row(first_branch + j) = piece.branch_gradient.row(static_cast<Eigen::Index>(q)).segment<3>(3 * j);
 }
@@ -511,7 +526,7 @@ void CutXfemModel::assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u,
   const int slots = num_slots(t);
   Eigen::MatrixX3d X, q;
   branch_tet_state(t, u, X, q);
-  // K_e = sum over the pieces of eq. (30) with every slot's gradient (branch_tet_gradients),
+  // K_e = sum over the pieces of eq. (30) with every slot's gradient (slot_gradients),
   // computed once in the constructor; corotated, each piece turned by its own rotation.
   Eigen::VectorXd f_e = Eigen::VectorXd::Zero(3 * slots);
   Eigen::MatrixXd K_e;
@@ -789,9 +804,9 @@ Eigen::Matrix3d CutXfemModel::displacement_gradient_at(const Eigen::VectorXd& u,
   return H;
 }
 
-CutXfemModel::FunctionsAt CutXfemModel::functions_at(Eigen::Index t, const Eigen::Vector3d& x, int p) const {
+CutXfemModel::FunctionsAt CutXfemModel::functions_at(Eigen::Index t, const Eigen::Vector3d& x) const {
   FunctionsAt result;
-  if (p < 0) p = piece_at(t, x);
+  const int p = piece_at(t, x);
   if (p < 0) return result;
   const int n = mesh_.nodes_per_tet();
   const Piece& piece = integrated_pieces(t)[static_cast<std::size_t>(p)];

@@ -155,12 +155,12 @@ public:
     Eigen::VectorXd value;     ///< its value at x
     Eigen::MatrixX3d gradient; ///< its gradient at x (m^-1), one row per function
   };
-  /// Every function acting at x (m) in tet t on piece p (-1: the piece piece_at finds): N_a on
-  /// node a and on the enrichment active there for the piece's phantom node, and the branch
-  /// functions. The field at x is sum_j value_j q_(dof_node j) and its gradient
-  /// sum_j q_(dof_node j) gradient_j^T: displacement_at and displacement_gradient_at one DOF node at
-  /// a time, for a map that is linear in q (cut_state_transfer.hpp). Empty if x is not in tet t.
-  FunctionsAt functions_at(Eigen::Index t, const Eigen::Vector3d& x, int p = -1) const;
+  /// Every function acting at x (m) in tet t, on the piece that holds x: N_a on node a and on the
+  /// enrichment active there for the piece's phantom node, and the branch functions. The field
+  /// at x is sum_j value_j q_(dof_node j) and its gradient sum_j q_(dof_node j) gradient_j^T:
+  /// displacement_at and displacement_gradient_at one DOF node at a time, for a map that is
+  /// linear in q (cut_state_transfer.hpp). Empty if x is not in tet t.
+  FunctionsAt functions_at(Eigen::Index t, const Eigen::Vector3d& x) const;
   /// Every quadrature point tet t is integrated at, with the value there of each of its slots'
   /// functions: visit(p, w, g) for each point of each piece p that tet t integrates (one piece
   /// for a tet integrated whole), w its weight (m^3), g one value per slot (the slots of row t of
@@ -170,6 +170,10 @@ public:
   /// points of its front or blending rule, the stiffness's; what chapter 6's mass integrates
   /// there (cut_xfem_mass.hpp: rho sum_q w_q g_q g_q^T).
   void for_each_slot_value(Eigen::Index t, const std::function<void(int, double, const Eigen::VectorXd&)>& visit) const;
+  /// for_each_slot_value with each slot's gradient too: visit(p, w, g, G), G one row per slot
+  /// (m^-1), from what the model stored for its rules (nothing is evaluated again).
+  void for_each_slot_gradient(Eigen::Index t,
+                              const std::function<void(int, double, const Eigen::VectorXd&, const Eigen::MatrixX3d&)>& visit) const;
   /// Whether tet t holds a branch-enriched node (its field has the branch functions).
   bool has_branch_functions(Eigen::Index t) const { return first_branch_slot_[static_cast<std::size_t>(t)] >= 0; }
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
@@ -235,10 +239,12 @@ private:
     int side = 0; // +1 / -1 if the piece lies above / below the cut, for theta's sign (0: not known)
     double volume = 0.0; // in a tet with branch nodes: the sum of the weights (m^3), computed once
   };
-  // At point q of a piece of branch tet t: one gradient per slot (rows), the phantom element's
-  // G_a on node a's slot and on the slot of the sign enrichment active there, and each branch
-  // function's own gradient.
-  void branch_tet_gradients(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::MatrixX3d& g) const;
+  // At point q of a piece of tet t: one value per slot, the phantom element's N_a on node a's
+  // slot and on the slot of the sign enrichment active there, and each branch function's value
+  // (for_each_slot_value's g).
+  void slot_values(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::VectorXd& g) const;
+  // The same for the gradients, one row per slot: G_a, and each branch function's own gradient.
+  void slot_gradients(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::MatrixX3d& g) const;
   // The number of slots of tet t.
   int num_slots(Eigen::Index t) const;
   // The branch functions of tet t at x on a piece on side `side` of the cut (0: not known):
