@@ -413,8 +413,12 @@ void LiverCut::apply_cut() {
   if (scene_.crack_tip.given) crack_tip = std::make_unique<kerf::SceneCrackTip>(scene_, mesh_, *pieces, *cuts, nullptr);
   else enrichment = std::make_unique<kerf::SurfaceEnrichment>(kerf::make_surface_enrichment(mesh_, *pieces));
   rebuild_times_.enrichment = lap();
-  auto model = std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, *pieces, crack_tip ? crack_tip->sign_enrichment() : *enrichment,
-                                                    rule_, crack_tip ? crack_tip->tip_functions() : nullptr);
+  // The model integrates anew only the tets recut_mesh_into_pieces cut again (and those with
+  // branch functions); every other tet keeps the old model's points.
+  const kerf::SurfaceEnrichment& sign = crack_tip ? crack_tip->sign_enrichment() : *enrichment;
+  const kerf::CrackTipFunctions* tip = crack_tip ? crack_tip->tip_functions() : nullptr;
+  auto model = model_ ? std::make_unique<kerf::CutXfemModel>(*model_, *pieces, sign, tip)
+                      : std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, *pieces, sign, rule_, tip);
   kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(*model, held_);
   rebuild_times_.model = lap();
   const bool rebuild = model_ != nullptr;
@@ -496,8 +500,12 @@ void LiverCut::setup_system() {
     f = M * e_g;
   }
   rebuild_times_.loads = lap();
+  // The tangent's pattern: the mesh's part copied from the last one, only the enriched tets' rows
+  // walked (sparse_assembler.hpp).
   const kerf::DofMap all_free = kerf::make_dof_map(model_->num_dof_nodes(), {});
-  tangent_assembler_ = std::make_unique<kerf::SparseAssembler>(model_->assembly_slots(), all_free);
+  tangent_assembler_ = tangent_assembler_ ? std::make_unique<kerf::SparseAssembler>(*tangent_assembler_, model_->assembly_slots(), all_free,
+                                                                                    mesh_.nodes_per_tet())
+                                          : std::make_unique<kerf::SparseAssembler>(model_->assembly_slots(), all_free);
   rebuild_times_.pattern = lap();
   const bool corotated = scene_.model == "corotational";
   const kerf::RotationMethod rotation = kerf::scene_quasi_static_settings(scene_).rotation;

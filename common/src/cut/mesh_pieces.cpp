@@ -113,12 +113,14 @@ MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::sh
 
 MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours) {
   std::optional<TetPieces> split;
-  return pieces_and_glue(mesh, cuts, std::move(neighbours), [&](Eigen::Index, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
+  MeshPieces result = pieces_and_glue(mesh, cuts, std::move(neighbours), [&](Eigen::Index, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
     const std::vector<CutTriangle> triangles = cuts.triangles_meeting_tet(X);
     if (triangles.empty()) return nullptr;
     split = split_tet_by_triangles(X, triangles);
     return &*split;
   });
+  result.kept_from_previous.assign(static_cast<std::size_t>(mesh.num_tets()), 0);
+  return result;
 }
 
 MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, const MeshPieces& previous, const Eigen::AlignedBox3d& changed) {
@@ -133,9 +135,11 @@ MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, 
     grown.max().array() += margin;
   }
   std::optional<TetPieces> split;
-  return pieces_and_glue(mesh, cuts, previous.neighbours, [&](Eigen::Index t, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
+  std::vector<unsigned char> kept(static_cast<std::size_t>(mesh.num_tets()), 0);
+  MeshPieces result = pieces_and_glue(mesh, cuts, previous.neighbours, [&](Eigen::Index t, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
     const Eigen::AlignedBox3d box(X.colwise().minCoeff().transpose(), X.colwise().maxCoeff().transpose());
     if (!box.intersects(grown)) {
+      kept[static_cast<std::size_t>(t)] = 1;
       const int e = previous.entry[static_cast<std::size_t>(t)];
       return e < 0 ? nullptr : &previous.tets[static_cast<std::size_t>(e)];
     }
@@ -144,6 +148,8 @@ MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, 
     split = split_tet_by_triangles(X, triangles);
     return &*split;
   });
+  result.kept_from_previous = std::move(kept);
+  return result;
 }
 
 namespace {

@@ -48,13 +48,93 @@ TriangleSurface local_cut_surface(const TetPieces& pieces) {
 
 } // namespace
 
+namespace {
+
+// The stiffness of one phantom element over a piece's points (eq. 30), n x n nodes.
+template <class Point>
+Eigen::MatrixXd piece_stiffness(const std::vector<Point>& points, int n, const LinearMaterial& material) {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+  for (const Point& point : points) {
+    if (n == 4) {
+      Eigen::Matrix<double, 12, 12> Kq = Eigen::Matrix<double, 12, 12>::Zero();
+      add_stiffness_integrand<4>(point.G.template topRows<4>(), point.weight, material.mu(), material.lambda(), Kq);
+      K += Kq;
+    } else {
+      Eigen::Matrix<double, 30, 30> Kq = Eigen::Matrix<double, 30, 30>::Zero();
+      add_stiffness_integrand<10>(point.G, point.weight, material.mu(), material.lambda(), Kq);
+      K += Kq;
+    }
+  }
+  return K;
+}
+
+// The reference positions of tet t's n nodes, stacked (3 n).
+Eigen::VectorXd nodal_positions(const TetMesh& mesh, Eigen::Index t) {
+  const int n = mesh.nodes_per_tet();
+  Eigen::VectorXd x_e(3 * n);
+  for (int a = 0; a < n; ++a) x_e.segment<3>(3 * a) = mesh.nodes.row(mesh.tets(t, a)).transpose();
+  return x_e;
+}
+
+} // namespace
+
+std::shared_ptr<const CutXfemModel::WholeTets> CutXfemModel::integrate_whole_tets(const TetMesh& mesh, const LinearMaterial& material) {
+  const int n = mesh.nodes_per_tet();
+  const Eigen::Index T = mesh.num_tets();
+  const TetQuadratureRule standard = tet_quadrature_rule(n == 4 ? 1 : 2);
+  auto whole = std::make_shared<WholeTets>();
+  whole->pieces.resize(static_cast<std::size_t>(T));
+  whole->position_force_squared.resize(static_cast<std::size_t>(T));
+  for (Eigen::Index t = 0; t < T; ++t) {
+    const Corners X = tet_corners(mesh, t);
+    const Eigen::Matrix3d J = corner_jacobian(X);
+    const Eigen::Matrix3d J_inverse = J.inverse();
+    const double volume_scale = std::abs(J.determinant());
+    Piece& piece = whole->pieces[static_cast<std::size_t>(t)];
+    piece.enrichment_slot.assign(static_cast<std::size_t>(n), -1);
+    for (std::size_t q = 0; q < standard.points.size(); ++q) {
+      Point point;
+      point.weight = standard.weights[q] * volume_scale;
+      if (n == 4) {
+        point.N.head<4>() = tet4_shape(standard.points[q]);
+        point.G.topRows<4>() = tet4_shape_gradients() * J_inverse;
+      } else {
+        point.N = tet10_shape(standard.points[q]);
+        point.G = tet10_shape_gradients(standard.points[q]) * J_inverse;
+      }
+      piece.points.push_back(point);
+    }
+    whole->position_force_squared[static_cast<std::size_t>(t)] = (piece_stiffness(piece.points, n, material) * nodal_positions(mesh, t)).squaredNorm();
+  }
+  return whole;
+}
+
 CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
                            const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule, const CrackTipFunctions* tip)
-    : mesh_(mesh), material_(material), pieces_(pieces), enrichment_(enrichment), tip_(tip) {
+    : mesh_(mesh), material_(material), pieces_(pieces), enrichment_(enrichment), tip_(tip), rule_(rule),
+      whole_(integrate_whole_tets(mesh, material)) {
+  build(nullptr);
+}
+
+CutXfemModel::CutXfemModel(const CutXfemModel& before, const MeshPieces& pieces, const SurfaceEnrichment& enrichment,
+                           const CrackTipFunctions* tip)
+    : mesh_(before.mesh_), material_(before.material_), pieces_(pieces), enrichment_(enrichment), tip_(tip), rule_(before.rule_),
+      whole_(before.whole_) {
+  if (pieces.kept_from_previous.size() != static_cast<std::size_t>(mesh_.num_tets()))
+    throw std::invalid_argument("CutXfemModel: the pieces do not say which tets kept their pieces (make them with recut_mesh_into_pieces)");
+  build(&before);
+}
+
+void CutXfemModel::build(const CutXfemModel* before) {
+  const TetMesh& mesh = mesh_;
+  const LinearMaterial& material = material_;
+  const MeshPieces& pieces = pieces_;
+  const SurfaceEnrichment& enrichment = enrichment_;
+  const CrackTipFunctions* tip = tip_;
+  const PieceRuleFunction& rule = rule_;
   const int n = mesh.nodes_per_tet();
   const Eigen::Index T = mesh.num_tets();
   const Eigen::Index N = mesh.num_nodes();
-  const TetQuadratureRule standard = tet_quadrature_rule(n == 4 ? 1 : 2);
   const int degree = stiffness_and_load_degree(mesh.order());
   if (tip && &tip->enrichment.sign != &enrichment)
     throw std::invalid_argument("CutXfemModel: with crack-tip functions, the enrichment must be their sign enrichment");
@@ -108,9 +188,8 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
   }
   slots_ = TetMatrix::Constant(T, width, -1);
   piece_data_.assign(static_cast<std::size_t>(T), {});
-  whole_.assign(static_cast<std::size_t>(T), {});
+  position_force_squared_.assign(static_cast<std::size_t>(T), 0.0);
 
-  double force_norm_squared = 0.0;
   for (Eigen::Index t = 0; t < T; ++t) {
     const std::vector<int>& list = extra[static_cast<std::size_t>(t)];
     const std::vector<int>& branch_nodes = branch_local_nodes_[static_cast<std::size_t>(t)];
@@ -121,32 +200,6 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       for (int l = 0; l < 4; ++l)
         slots_(t, first_branch_slot_[static_cast<std::size_t>(t)] + 4 * static_cast<int>(j) + l) = static_cast<int>(branch_dof_node(k)) + l;
     }
-
-    const Corners X = tet_corners(mesh, t);
-    const Eigen::Matrix3d J = corner_jacobian(X);
-    const Eigen::Matrix3d J_inverse = J.inverse();
-    const double det = J.determinant();
-    const auto point_at = [&](const Eigen::Vector3d& x, double weight) {
-      Point point;
-      const Eigen::Vector3d xi = J_inverse * (x - X.row(0).transpose());
-      point.weight = weight;
-      if (n == 4) {
-        point.N.head<4>() = tet4_shape(xi);
-        point.G.topRows<4>() = tet4_shape_gradients() * J_inverse;
-      } else {
-        point.N = tet10_shape(xi);
-        point.G = tet10_shape_gradients(xi) * J_inverse;
-      }
-      return point;
-    };
-    const auto rule_points = [&](const auto& points, const auto& weights, double scale, bool reference) {
-      std::vector<Point> result;
-      for (std::size_t q = 0; q < points.size(); ++q)
-        result.push_back(point_at(reference ? Eigen::Vector3d(X.row(0).transpose() + J * points[q]) : Eigen::Vector3d(points[q]),
-                                  weights[q] * scale));
-      return result;
-    };
-    const auto standard_points = [&]() { return rule_points(standard.points, standard.weights, std::abs(det), true); };
 
     const std::vector<int>& active = enrichment.active[static_cast<std::size_t>(t)];
     const int np = pieces.num_pieces(t);
@@ -162,6 +215,47 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
       return piece;
     };
     std::vector<Piece> data;
+    if (branch_nodes.empty() && (list.empty() || np == 1)) {
+      // The whole tet by its own rule (whole_): with no enrichment it is chapter 1's element;
+      // one piece on which some enrichment is 1 takes the same points.
+      if (!list.empty()) data.push_back(new_piece(0, whole_->pieces[static_cast<std::size_t>(t)].points));
+      position_force_squared_[static_cast<std::size_t>(t)] = whole_->position_force_squared[static_cast<std::size_t>(t)];
+      piece_data_[static_cast<std::size_t>(t)] = std::move(data);
+      continue;
+    }
+    if (branch_nodes.empty() && before && pieces.kept_from_previous[static_cast<std::size_t>(t)] && !before->has_branch_functions(t) &&
+        before->piece_data_[static_cast<std::size_t>(t)].size() == static_cast<std::size_t>(np)) {
+      // The same pieces as in `before`, which integrated them by the same rule: its points.
+      for (const Piece& kept : before->piece_data_[static_cast<std::size_t>(t)]) data.push_back(new_piece(static_cast<int>(data.size()), kept.points));
+      position_force_squared_[static_cast<std::size_t>(t)] = before->position_force_squared_[static_cast<std::size_t>(t)];
+      piece_data_[static_cast<std::size_t>(t)] = std::move(data);
+      continue;
+    }
+
+    // The tet's points are made here: its map from reference coordinates, and its rules' points
+    // with the shape functions there.
+    const Corners X = tet_corners(mesh, t);
+    const Eigen::Matrix3d J = corner_jacobian(X);
+    const Eigen::Matrix3d J_inverse = J.inverse();
+    const auto point_at = [&](const Eigen::Vector3d& x, double weight) {
+      Point point;
+      const Eigen::Vector3d xi = J_inverse * (x - X.row(0).transpose());
+      point.weight = weight;
+      if (n == 4) {
+        point.N.head<4>() = tet4_shape(xi);
+        point.G.topRows<4>() = tet4_shape_gradients() * J_inverse;
+      } else {
+        point.N = tet10_shape(xi);
+        point.G = tet10_shape_gradients(xi) * J_inverse;
+      }
+      return point;
+    };
+    const auto rule_points = [&](const PieceQuadratureRule& r) {
+      std::vector<Point> result;
+      for (std::size_t q = 0; q < r.points.size(); ++q) result.push_back(point_at(r.points[q], r.weights[q]));
+      return result;
+    };
+
     if (!branch_nodes.empty()) {
       // A tet with branch nodes: every piece (or the whole tet) by a rule for non-polynomials.
       const bool front_tet = tip->enrichment.front_tet[static_cast<std::size_t>(t)] != 0;
@@ -173,7 +267,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
         const PieceQuadratureRule r = front_tet && tip->front_rule == FrontRule::collapsed
                                           ? front_collapsed_rule(X, whole, 0, tip->fronts, front_points, tip->front_grading)
                                           : near_front_graded_rule(whole, 0, tip->fronts, tip->blending_degree, tip->blending_depth);
-        data.push_back(new_piece(0, rule_points(r.points, r.weights, 1.0, false)));
+        data.push_back(new_piece(0, rule_points(r)));
       } else {
         const TetPieces& tet_pieces = pieces.tets[static_cast<std::size_t>(e)];
         for (int p = 0; p < np; ++p) {
@@ -184,7 +278,7 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
             r = refined_subtet_rule(tet_pieces, p, 2 * front_points - 1, 1);
           else
             r = near_front_graded_rule(tet_pieces, p, tip->fronts, tip->blending_degree, tip->blending_depth);
-          Piece piece = new_piece(p, rule_points(r.points, r.weights, 1.0, false));
+          Piece piece = new_piece(p, rule_points(r));
           // The side of the cut the piece lies on, where all its cut polygons agree: behind the
           // front, theta's sign is taken from it (branch_functions_at).
           for (const PieceBoundaryPolygon& b : tet_pieces.pieces[static_cast<std::size_t>(p)].boundary)
@@ -237,40 +331,20 @@ CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, 
         piece.volume = volume;
         if (volume > 0.0) piece.mean_gradient /= volume;
       }
-    } else if (list.empty()) {
-      whole_[static_cast<std::size_t>(t)] = {std::vector<int>(static_cast<std::size_t>(n), -1), standard_points(), {}, {}, {}, {}, 0};
-    } else if (np == 1) {
-      // One piece, the whole tet, on which some enrichment is 1: the tet's own rule.
-      data.push_back(new_piece(0, standard_points()));
     } else {
       const TetPieces& tet_pieces = pieces.tets[static_cast<std::size_t>(e)];
       for (int p = 0; p < np; ++p) {
         const PieceQuadratureRule r = rule(X, tet_pieces, p, degree);
-        data.push_back(new_piece(p, rule_points(r.points, r.weights, 1.0, false)));
+        data.push_back(new_piece(p, rule_points(r)));
       }
     }
-    piece_data_[static_cast<std::size_t>(t)] = std::move(data);
-
     // The position force |K X| of each piece's phantom element (the floor of f_int's round-off).
-    const std::span<const Piece> integrated = integrated_pieces(t);
-    Eigen::VectorXd x_e(3 * n);
-    for (int a = 0; a < n; ++a) x_e.segment<3>(3 * a) = mesh.nodes.row(mesh.tets(t, a)).transpose();
-    for (const Piece& piece : integrated) {
-      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * n, 3 * n);
-      for (const Point& point : piece.points) {
-        if (n == 4) {
-          Eigen::Matrix<double, 12, 12> Kq = Eigen::Matrix<double, 12, 12>::Zero();
-          add_stiffness_integrand<4>(point.G.topRows<4>(), point.weight, material.mu(), material.lambda(), Kq);
-          K += Kq;
-        } else {
-          Eigen::Matrix<double, 30, 30> Kq = Eigen::Matrix<double, 30, 30>::Zero();
-          add_stiffness_integrand<10>(point.G, point.weight, material.mu(), material.lambda(), Kq);
-          K += Kq;
-        }
-      }
-      force_norm_squared += (K * x_e).squaredNorm();
-    }
+    const Eigen::VectorXd x_e = nodal_positions(mesh, t);
+    for (const Piece& piece : data) position_force_squared_[static_cast<std::size_t>(t)] += (piece_stiffness(piece.points, n, material) * x_e).squaredNorm();
+    piece_data_[static_cast<std::size_t>(t)] = std::move(data);
   }
+  double force_norm_squared = 0.0;
+  for (const double f : position_force_squared_) force_norm_squared += f;
   position_force_norm_ = std::sqrt(force_norm_squared);
 }
 
@@ -358,7 +432,7 @@ Eigen::Matrix<double, 4, Eigen::Dynamic> CutXfemModel::branch_functions_at(Eigen
 std::span<const CutXfemModel::Piece> CutXfemModel::integrated_pieces(Eigen::Index t) const {
   const std::vector<Piece>& split_pieces = piece_data_[static_cast<std::size_t>(t)];
   if (!split_pieces.empty()) return split_pieces;
-  return {&whole_[static_cast<std::size_t>(t)], 1};
+  return {&whole_->pieces[static_cast<std::size_t>(t)], 1};
 }
 
 Eigen::Index CutXfemModel::num_negative_weights() const {
@@ -670,7 +744,7 @@ std::vector<std::pair<int, double>> CutXfemModel::branch_values_on_side(Eigen::I
 
 Eigen::MatrixX3d CutXfemModel::phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const {
   const int n = mesh_.nodes_per_tet();
-  const Piece& piece = split(t) ? piece_data_[static_cast<std::size_t>(t)][static_cast<std::size_t>(p)] : whole_[static_cast<std::size_t>(t)];
+  const Piece& piece = split(t) ? piece_data_[static_cast<std::size_t>(t)][static_cast<std::size_t>(p)] : whole_->pieces[static_cast<std::size_t>(t)];
   Eigen::MatrixX3d u_p(n, 3);
   for (int a = 0; a < n; ++a) {
     Eigen::Vector3d value = u.segment<3>(3 * mesh_.tets(t, a));

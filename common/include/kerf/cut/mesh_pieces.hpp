@@ -39,6 +39,10 @@ struct MeshPieces {
   std::vector<std::array<std::vector<PieceGlue>, 4>> glues;
   std::array<int, 4> state_counts{};    ///< tets in each SurfaceCutState (uncut ones included)
   std::vector<int> tets_per_surface;    ///< how many tets each cut surface meets (0: it misses the mesh)
+  /// #T: 1 where recut_mesh_into_pieces kept the previous pieces of the tet (or its having none)
+  /// instead of cutting it again, 0 where it cut it; all 0 from cut_mesh_into_pieces. What a model
+  /// of the grown cut may reuse (CutXfemModel's constructor from an earlier model).
+  std::vector<unsigned char> kept_from_previous;
 
   /// The number of pieces of tet t (1 for a tet without an entry).
   int num_pieces(Eigen::Index t) const {

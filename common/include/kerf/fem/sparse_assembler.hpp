@@ -39,6 +39,22 @@ public:
   /// @throws std::invalid_argument if a node has some DOFs free and others prescribed
   SparseAssembler(const TetMatrix& elements, const DofMap& dofs);
 
+  /// The assembler of a cut that has grown, built from the one before it where the mesh did
+  /// not change (chapter 7 makes one at every change of topology).
+  ///
+  /// Every row of `elements` starts with `mesh_slots` slots that hold the mesh's nodes, the same
+  /// as the same row of `before`'s elements, and `dofs` frees and numbers their DOFs as
+  /// `before`'s DofMap did; the DOF nodes in the other slots (enrichments) are numbered after
+  /// every mesh node and may differ in every way. Free indices grow with the DOF, so in every
+  /// column the mesh's rows come first, at the same offsets as before: the mesh's part of the
+  /// pattern is copied from `before`, its part of the scatter map shifted by the columns' new
+  /// starts, and only the rows that have other slots are walked. The result is the other
+  /// constructor's (tests/chapter_07/test_incremental_rebuild.cpp), at a cost set by the enriched rows
+  /// and a copy of the pattern's index arrays.
+  /// @throws std::invalid_argument if a row's mesh slots or the mesh DOFs' numbering differ from
+  ///         `before`'s, or another slot holds a DOF node numbered before a mesh node
+  SparseAssembler(const SparseAssembler& before, const TetMatrix& elements, const DofMap& dofs, int mesh_slots);
+
   /// The prescribed values u_c (3 #DOF nodes; entries at free DOFs are ignored) that later
   /// add_element calls lift into the right-hand side. A quasi-static step lifts its prescribed
   /// increment in its first Newton iteration and nothing afterwards, and says so here.

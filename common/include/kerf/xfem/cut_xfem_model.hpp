@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -114,6 +115,22 @@ public:
   ///                   must then be tip->enrichment.sign
   CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
                const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule, const CrackTipFunctions* tip = nullptr);
+
+  /// The model of the same mesh, material and rule after the cut has grown, integrated anew only
+  /// where the cut changed (chapter 7 rebuilds it whenever the blade crosses a tet).
+  ///
+  /// `pieces` must be recut_mesh_into_pieces(mesh, cuts, before.pieces(), changed), with
+  /// before.pieces() still alive. A tet whose pieces recut kept (MeshPieces::kept_from_previous)
+  /// and that has no branch functions, before or now, keeps `before`'s quadrature points, which
+  /// depend only on its pieces: the costly part, the rules of the cut tets (moment fitting, or
+  /// sub-tets), is paid for the recut tets only. The tets integrated whole share one set of
+  /// points with `before` (they depend on the mesh alone). What depends on the enrichments (the
+  /// slots, and which slot each phantom node takes) is cheap and rebuilt for every tet, so the
+  /// model equals the one the other constructor makes from the same arguments
+  /// (tests/chapter_07/test_incremental_rebuild.cpp asserts it).
+  /// @throws std::invalid_argument if `pieces` does not say which tets were kept
+  CutXfemModel(const CutXfemModel& before, const MeshPieces& pieces, const SurfaceEnrichment& enrichment,
+               const CrackTipFunctions* tip = nullptr);
 
   Eigen::Index num_dof_nodes() const override {
     return mesh_.num_nodes() + enrichment_.num_enrichments() + 4 * num_branch_nodes();
@@ -277,6 +294,17 @@ private:
   template <int n>
   double tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const;
 
+  // Every tet integrated whole by its own rule, with the square of its position force |K_e X_e|:
+  // a property of the mesh, shared by the models of a growing cut.
+  struct WholeTets {
+    std::vector<Piece> pieces;
+    std::vector<double> position_force_squared;
+  };
+  static std::shared_ptr<const WholeTets> integrate_whole_tets(const TetMesh& mesh, const LinearMaterial& material);
+  // The constructors' work: the slots, and the points of every tet, taken from `before` where
+  // its pieces were kept (nullptr: none).
+  void build(const CutXfemModel* before);
+
   const TetMesh& mesh_;
   LinearMaterial material_;
   const MeshPieces& pieces_;
@@ -288,9 +316,11 @@ private:
   std::vector<std::vector<int>> branch_local_nodes_;
   std::vector<Eigen::Matrix<double, 4, Eigen::Dynamic>> branch_nodal_values_; // per such tet: R F_l at its n nodes (4 x n)
   std::vector<Eigen::Vector4d> ramp_corners_; // per tet: 1 for the corners in I* (all four without Fries's correction)
+  PieceRuleFunction rule_;
   TetMatrix slots_;
   std::vector<std::vector<Piece>> piece_data_; // per tet; empty for tets integrated whole
-  std::vector<Piece> whole_;                    // per tet integrated whole: its own rule (filled for all tets)
+  std::shared_ptr<const WholeTets> whole_;      // every tet's own rule, used where it is integrated whole
+  std::vector<double> position_force_squared_;  // per tet: |K_p X_e|^2 summed over what it integrates
   double position_force_norm_ = 0.0;
 };
 
