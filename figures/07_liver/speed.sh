@@ -248,7 +248,8 @@ large = [r for r in rows if f(r, "no_topology_ms") == f(r, "no_topology_ms")][-1
 grow = f(large, "no_topology_ms") / f(small, "no_topology_ms")
 p(f"- From {int(small['tets']):,} to {int(large['tets']):,} tets ({int(large['tets']) / int(small['tets']):.0f} times) a step without a topology "
   f"change costs {grow:.0f} times more, a topology step {f(large, 'topology_step_ms') / f(small, 'topology_step_ms'):.0f} times more:")
-p("  the rebuild (pieces, enrichment, model, mass, pattern) is over the whole mesh, not only the newly crossed tets.")
+p("  CG-Jacobi needs more iterations on a finer mesh, and of a rebuild the mass, the pieces' copy and glue and the")
+p("  integrator's start are still over the whole mesh (the model's points and the pattern only where the cut changed).")
 p("- The blade's share (pulling the edge back, growing the sheet, the semi-progressive crossing test) is small at")
 p("  every size, as figures/07_liver/blade_sweep.md measured for the crossing test alone.")
 p("- These are the timings of main.cpp as of the commit that made them; the program is being optimised, and")
