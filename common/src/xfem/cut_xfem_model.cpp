@@ -46,9 +46,21 @@ TriangleSurface local_cut_surface(const TetPieces& pieces) {
   return surface;
 }
 
-} // namespace
-
-namespace {
+// A quadrature point at reference coordinates xi of a straight-edged tet with inverse Jacobian
+// J_inverse: its weight (m^3) and the n shape functions' values and physical gradients there.
+template <class Point>
+Point point_at_reference(const Eigen::Vector3d& xi, const Eigen::Matrix3d& J_inverse, double weight, int n) {
+  Point point;
+  point.weight = weight;
+  if (n == 4) {
+    point.N.template head<4>() = tet4_shape(xi);
+    point.G.template topRows<4>() = tet4_shape_gradients() * J_inverse;
+  } else {
+    point.N = tet10_shape(xi);
+    point.G = tet10_shape_gradients(xi) * J_inverse;
+  }
+  return point;
+}
 
 // The stiffness of one phantom element over a piece's points (eq. 30), n x n nodes.
 template <class Point>
@@ -92,18 +104,8 @@ std::shared_ptr<const CutXfemModel::WholeTets> CutXfemModel::integrate_whole_tet
     const double volume_scale = std::abs(J.determinant());
     Piece& piece = whole->pieces[static_cast<std::size_t>(t)];
     piece.enrichment_slot.assign(static_cast<std::size_t>(n), -1);
-    for (std::size_t q = 0; q < standard.points.size(); ++q) {
-      Point point;
-      point.weight = standard.weights[q] * volume_scale;
-      if (n == 4) {
-        point.N.head<4>() = tet4_shape(standard.points[q]);
-        point.G.topRows<4>() = tet4_shape_gradients() * J_inverse;
-      } else {
-        point.N = tet10_shape(standard.points[q]);
-        point.G = tet10_shape_gradients(standard.points[q]) * J_inverse;
-      }
-      piece.points.push_back(point);
-    }
+    for (std::size_t q = 0; q < standard.points.size(); ++q)
+      piece.points.push_back(point_at_reference<Point>(standard.points[q], J_inverse, standard.weights[q] * volume_scale, n));
     whole->position_force_squared[static_cast<std::size_t>(t)] = (piece_stiffness(piece.points, n, material) * nodal_positions(mesh, t)).squaredNorm();
   }
   return whole;
@@ -237,22 +239,10 @@ void CutXfemModel::build(const CutXfemModel* before) {
     const Corners X = tet_corners(mesh, t);
     const Eigen::Matrix3d J = corner_jacobian(X);
     const Eigen::Matrix3d J_inverse = J.inverse();
-    const auto point_at = [&](const Eigen::Vector3d& x, double weight) {
-      Point point;
-      const Eigen::Vector3d xi = J_inverse * (x - X.row(0).transpose());
-      point.weight = weight;
-      if (n == 4) {
-        point.N.head<4>() = tet4_shape(xi);
-        point.G.topRows<4>() = tet4_shape_gradients() * J_inverse;
-      } else {
-        point.N = tet10_shape(xi);
-        point.G = tet10_shape_gradients(xi) * J_inverse;
-      }
-      return point;
-    };
     const auto rule_points = [&](const PieceQuadratureRule& r) {
       std::vector<Point> result;
-      for (std::size_t q = 0; q < r.points.size(); ++q) result.push_back(point_at(r.points[q], r.weights[q]));
+      for (std::size_t q = 0; q < r.points.size(); ++q)
+        result.push_back(point_at_reference<Point>(J_inverse * (r.points[q] - X.row(0).transpose()), J_inverse, r.weights[q], n));
       return result;
     };
 
