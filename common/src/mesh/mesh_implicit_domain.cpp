@@ -6,10 +6,14 @@
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Random.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/hilbert_sort.h>
 #include <CGAL/make_mesh_3.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -94,14 +98,30 @@ TetMesh mesh_implicit_domain(const std::function<double(const Eigen::Vector3d&)>
   if (c3t3.number_of_cells_in_complex() == 0)
     throw std::runtime_error("mesh_implicit_domain: Mesh_3 made no tets (the sizes are too large for the shape, or phi < 0 nowhere it looked)");
 
-  // Number the vertices in the order the cells first use them, so that only used ones are kept
-  // and the numbering follows Mesh_3's (deterministic) cell order.
+  // The tets in the order of a Hilbert curve through their centroids, and the vertices numbered
+  // in the order those tets first use them (so only used ones are kept). Mesh_3's own cell order
+  // follows its memory, scattered over the organ; along the curve, neighbouring tets and nodes
+  // get nearby numbers, so that an assembly or a matrix-vector product walks memory in order:
+  // chapter 7's step is 10-20 % faster for it. The order is deterministic (as Mesh_3's is).
+  std::vector<Triangulation::Cell_handle> cells;
+  std::vector<Point> centroids;
+  for (auto cell = c3t3.cells_in_complex_begin(); cell != c3t3.cells_in_complex_end(); ++cell) {
+    cells.push_back(cell);
+    std::array<Point, 4> corners;
+    for (int a = 0; a < 4; ++a) corners[static_cast<std::size_t>(a)] = cell->vertex(a)->point().point();
+    centroids.push_back(CGAL::centroid(corners[0], corners[1], corners[2], corners[3]));
+  }
+  std::vector<std::size_t> order(cells.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  using SortTraits = CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::Pointer_property_map<Point>::type>;
+  CGAL::hilbert_sort(order.begin(), order.end(), SortTraits(CGAL::make_property_map(centroids)));
+
   std::map<Triangulation::Vertex_handle, int> index;
   TetMesh mesh;
-  mesh.tets.resize(static_cast<Eigen::Index>(c3t3.number_of_cells_in_complex()), 4);
+  mesh.tets.resize(static_cast<Eigen::Index>(cells.size()), 4);
   std::vector<Eigen::Vector3d> positions;
-  Eigen::Index t = 0;
-  for (auto cell = c3t3.cells_in_complex_begin(); cell != c3t3.cells_in_complex_end(); ++cell, ++t) {
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto& cell = cells[order[k]];
     for (int a = 0; a < 4; ++a) {
       const auto vertex = cell->vertex(a);
       const auto [it, is_new] = index.emplace(vertex, static_cast<int>(positions.size()));
@@ -109,7 +129,7 @@ TetMesh mesh_implicit_domain(const std::function<double(const Eigen::Vector3d&)>
         const auto& x = vertex->point().point(); // a weighted point: its bare point
         positions.emplace_back(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z()));
       }
-      mesh.tets(t, a) = it->second;
+      mesh.tets(static_cast<Eigen::Index>(k), a) = it->second;
     }
   }
   mesh.nodes.resize(static_cast<Eigen::Index>(positions.size()), 3);
@@ -117,7 +137,7 @@ TetMesh mesh_implicit_domain(const std::function<double(const Eigen::Vector3d&)>
 
   // CGAL's cells are positively oriented already; we check each one anyway and swap corners 1
   // and 2 of any that is not, so that the promise holds whatever the triangulation's convention.
-  for (t = 0; t < mesh.num_tets(); ++t) {
+  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     const Eigen::Vector3d x0 = mesh.nodes.row(mesh.tets(t, 0)), x1 = mesh.nodes.row(mesh.tets(t, 1));
     const Eigen::Vector3d x2 = mesh.nodes.row(mesh.tets(t, 2)), x3 = mesh.nodes.row(mesh.tets(t, 3));
     if ((x1 - x0).dot((x2 - x0).cross(x3 - x0)) < 0.0) std::swap(mesh.tets(t, 1), mesh.tets(t, 2));

@@ -46,8 +46,10 @@ struct ImplicitMeshOptimisation {
 ///
 /// The result is the same for the same inputs: CGAL's random generators (the domain's, which
 /// shoots the rays for the initial surface points, and the default one) are seeded with 0 first.
-/// Tets are positively oriented (det[x1-x0, x2-x0, x3-x0] > 0); only the vertices of tets are
-/// kept, numbered in the order the tets first use them.
+/// Tets are positively oriented (det[x1-x0, x2-x0, x3-x0] > 0) and ordered along a Hilbert curve
+/// through their centroids (CGAL::hilbert_sort), so that tets and nodes near each other in space
+/// are near each other in memory; only the vertices of tets are kept, numbered in the order the
+/// tets first use them.
 ///
 /// @param phi             the implicit function, negative inside, positive on the bounding sphere
 /// @param centre          the centre of the bounding sphere, a point with phi < 0 (m)
