@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <ctime>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -44,29 +45,47 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
   const Eigen::SparseMatrix<double>& M = system_.M;
   if (!K.isCompressed() || !M.isCompressed()) throw std::invalid_argument("NonlinearNewmarkIntegrator: M and K must be compressed");
   if (K.nonZeros() != pattern_K_nonzeros_) {
-    // The pattern: the free block of M + K with every stored entry kept (ones, so nothing cancels).
-    Eigen::SparseMatrix<double> M_ones = M, K_ones = K;
-    std::fill(M_ones.valuePtr(), M_ones.valuePtr() + M_ones.nonZeros(), 1.0);
-    std::fill(K_ones.valuePtr(), K_ones.valuePtr() + K_ones.nonZeros(), 1.0);
-    A_ff_ = free_block(M_ones + K_ones);
-    A_ff_.makeCompressed();
+    // The pattern: the free block of M + K with every stored entry kept (nothing cancels), and
+    // for each of its entries where M's and K's values sit. One merge of the two matrices'
+    // sorted columns (a new cut changes K's pattern: chapter 7 pays this at every change).
     const std::vector<int>& index = system_.dofs.free_index;
-    // Where in A_ff_'s value array the entry (row, col) of the full matrix lands: a binary search in its column.
-    const auto position = [&](Eigen::Index row, Eigen::Index col) -> Eigen::Index {
-      const int r = index[static_cast<std::size_t>(row)], c = index[static_cast<std::size_t>(col)];
-      if (r < 0 || c < 0) return -1;
-      const int* begin = A_ff_.innerIndexPtr() + A_ff_.outerIndexPtr()[c];
-      const int* end = A_ff_.innerIndexPtr() + A_ff_.outerIndexPtr()[c + 1];
-      return std::lower_bound(begin, end, r) - A_ff_.innerIndexPtr();
+    const Eigen::Index n = system_.dofs.num_free;
+    std::vector<Eigen::Index> column_of_free(static_cast<std::size_t>(n), -1);
+    for (std::size_t j = 0; j < index.size(); ++j)
+      if (index[j] >= 0) column_of_free[static_cast<std::size_t>(index[j])] = static_cast<Eigen::Index>(j);
+    struct Entry {
+      int row;
+      Eigen::Index from_M, from_K;
     };
-    const auto map_values = [&](const Eigen::SparseMatrix<double>& S, std::vector<Eigen::Index>& from) {
-      from.assign(static_cast<std::size_t>(A_ff_.nonZeros()), -1);
-      for (Eigen::Index col = 0; col < S.outerSize(); ++col)
-        for (Eigen::Index k = S.outerIndexPtr()[col]; k < S.outerIndexPtr()[col + 1]; ++k)
-          if (const Eigen::Index p = position(S.innerIndexPtr()[k], col); p >= 0) from[static_cast<std::size_t>(p)] = k;
-    };
-    map_values(M, from_M_);
-    map_values(K, from_K_);
+    std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
+    std::vector<Eigen::Index> from_M, from_K;
+    std::vector<Entry> column;
+    for (Eigen::Index c = 0; c < n; ++c) {
+      const Eigen::Index j = column_of_free[static_cast<std::size_t>(c)];
+      column.clear();
+      Eigen::Index m = M.outerIndexPtr()[j], k = K.outerIndexPtr()[j];
+      const Eigen::Index m_end = M.outerIndexPtr()[j + 1], k_end = K.outerIndexPtr()[j + 1];
+      while (m < m_end || k < k_end) { // both columns are sorted by row: merge them
+        const Eigen::Index row_M = m < m_end ? M.innerIndexPtr()[m] : std::numeric_limits<Eigen::Index>::max();
+        const Eigen::Index row_K = k < k_end ? K.innerIndexPtr()[k] : std::numeric_limits<Eigen::Index>::max();
+        const Eigen::Index row = std::min(row_M, row_K);
+        const Entry entry{index[static_cast<std::size_t>(row)], row_M == row ? m++ : -1, row_K == row ? k++ : -1};
+        if (entry.row >= 0) column.push_back(entry);
+      }
+      // A DofMap need not number the free DOFs in order: sort by the free row.
+      if (!std::is_sorted(column.begin(), column.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; }))
+        std::sort(column.begin(), column.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; });
+      for (const Entry& entry : column) {
+        inner.push_back(entry.row);
+        from_M.push_back(entry.from_M);
+        from_K.push_back(entry.from_K);
+      }
+      outer[static_cast<std::size_t>(c) + 1] = static_cast<int>(inner.size());
+    }
+    std::vector<double> zeros(inner.size(), 0.0);
+    A_ff_ = Eigen::Map<const Eigen::SparseMatrix<double>>(n, n, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), zeros.data());
+    from_M_ = std::move(from_M);
+    from_K_ = std::move(from_K);
     pattern_K_nonzeros_ = K.nonZeros();
     analysed_ = false;
   }
@@ -142,7 +161,7 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
   Eigen::VectorXd a_f = P_ * state.a;
   DynamicState next;
   next.t = t_next;
-  Eigen::VectorXd f_int, residual;
+  Eigen::VectorXd f_int, residual, C_v_next;
   Eigen::SparseMatrix<double> K;
   const auto evaluate = [&] {
     next.a = combine(a_f, motion.a);
@@ -153,7 +172,8 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
     } else {
       system_.internal_force(next.u, CorotationalTangent::consistent, f_int, &K);
     }
-    residual = f_next - M * next.a - C_times(next.v) - f_int;
+    C_v_next = C_times(next.v);
+    residual = f_next - M * next.a - C_v_next - f_int;
   };
 
   NonlinearStepReport report;
@@ -198,13 +218,15 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
   // The energy of the step on all DOFs. The reactions r = M a + C v + f_int - f at both ends,
   // with the step's own C and f_int, on the prescribed DOFs only.
   const Eigen::VectorXd f_start = system_.load(state.t);
-  const Eigen::VectorXd du = next.u - state.u, v_bar = 0.5 * (next.v + state.v);
+  const Eigen::VectorXd du = next.u - state.u;
   const Eigen::VectorXd free_mask = Pt_ * Eigen::VectorXd::Ones(P_.rows());
   const Eigen::VectorXd prescribed_mask = Eigen::VectorXd::Ones(du.size()) - free_mask;
-  const Eigen::VectorXd r_start = M * state.a + C_times(state.v) + f_int_start - f_start;
-  const Eigen::VectorXd r_next = M * next.a + C_times(next.v) + f_int - f_next;
+  // C is linear: C v_bar = (C v_n + C v_{n+1}) / 2, from the products the residuals use.
+  const Eigen::VectorXd C_v_start = C_times(state.v);
+  const Eigen::VectorXd r_start = M * state.a + C_v_start + f_int_start - f_start;
+  const Eigen::VectorXd r_next = M * next.a + C_v_next + f_int - f_next;
   report.energy.external_work = du.dot(0.5 * (f_start + f_next)) + du.cwiseProduct(prescribed_mask).dot(0.5 * (r_start + r_next));
-  report.energy.damping = du.dot(C_times(v_bar));
+  report.energy.damping = du.dot(0.5 * (C_v_start + C_v_next));
   const double kinetic_change = 0.5 * next.v.dot(M * next.v) - 0.5 * state.v.dot(M * state.v);
   const double elastic_start = elastic_energy(state.u);
   const double elastic_change = elastic_energy(next.u) - elastic_start;
