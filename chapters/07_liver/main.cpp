@@ -230,6 +230,7 @@ private:
   void apply_cut();
   void setup_system();
   bool advance_blade(const kerf::BladeEdge* world, bool blade_done);
+  void assemble_at(const Eigen::VectorXd& u, kerf::RotationMethod rotation);
   void do_timestep(int step, const kerf::BladeEdge* blade, bool blade_done);
   void check_state(int step) const;
   void output_step(int step);
@@ -269,6 +270,15 @@ private:
   std::unique_ptr<kerf::CutXfemModel> model_;
   kerf::DofMap dofs_;
   std::unique_ptr<kerf::SparseAssembler> tangent_assembler_;
+  std::unique_ptr<kerf::SplitTetMasses> piece_masses_; // of model_, kept across rebuilds like its points
+  // The corotated forces, the warped tangent (in tangent_assembler_) and the strain energy at the
+  // last u assembled (assemble_at): a step ends by asking for W at the state the next step starts
+  // from, so one pass serves both.
+  struct Assembled {
+    Eigen::VectorXd u, f_int;
+    double energy = 0.0;
+    bool valid = false; // false after the model or the assembler's matrix changed
+  } assembled_;
   kerf::NonlinearDynamicSystem system_;
   std::unique_ptr<kerf::NonlinearNewmarkIntegrator> newmark_;
   kerf::DynamicState state_;
@@ -484,7 +494,10 @@ void LiverCut::apply_cut() {
 // grow reuses them.
 void LiverCut::setup_system() {
   Lap lap;
-  const Eigen::SparseMatrix<double> M = kerf::scene_cut_xfem_mass(scene_, *model_, rule_);
+  // The split tets' piece masses: those whose pieces the cut kept are copied from the last
+  // model's, the others integrated by the scene's rule (cut_xfem_mass.hpp).
+  piece_masses_ = std::make_unique<kerf::SplitTetMasses>(*model_, rule_, piece_masses_.get());
+  const Eigen::SparseMatrix<double> M = kerf::scene_cut_xfem_mass(scene_, *model_, *piece_masses_);
   rebuild_times_.mass = lap();
   // The loads that go with the mass. Gravity is the mass times a unit translation along g, M e_g
   // (u = g at the nodes, a = 0): for the consistent mass that is rho int N^T g, for the per-piece
@@ -521,9 +534,18 @@ void LiverCut::setup_system() {
     still.u = still.v = still.a = Eigen::VectorXd::Zero(n);
     return still;
   };
+  assembled_.valid = false;
   system_.internal_force = [this, rotation, corotated](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
                                                       Eigen::SparseMatrix<double>* K) {
+    if (corotated && tangent == kerf::CorotationalTangent::warped) {
+      assemble_at(u, rotation);
+      f_int = assembled_.f_int;
+      if (K) *K = tangent_assembler_->matrix();
+      return;
+    }
+    // Newton's consistent tangent, or the linear body: assembled each time asked.
     const auto start = std::chrono::steady_clock::now();
+    assembled_.valid = false;
     Eigen::VectorXd unused = Eigen::VectorXd::Zero(u.size());
     if (K) tangent_assembler_->set_zero();
     if (corotated) {
@@ -535,7 +557,11 @@ void LiverCut::setup_system() {
     if (K) *K = tangent_assembler_->matrix();
     step_times_.assemble += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  system_.elastic_energy = [this, rotation, corotated](const Eigen::VectorXd& u) { return model_->energy(u, corotated, rotation); };
+  system_.elastic_energy = [this, rotation, corotated](const Eigen::VectorXd& u) {
+    if (!corotated) return model_->energy(u, false, rotation);
+    assemble_at(u, rotation);
+    return assembled_.energy;
+  };
   kerf::NonlinearNewmarkSettings settings;
   settings.newmark = {scene_.time.beta, scene_.time.gamma};
   settings.update = scene_.time.corotation == "newton" ? kerf::RotationUpdate::newton : kerf::RotationUpdate::frozen;
@@ -561,6 +587,24 @@ void LiverCut::setup_system() {
   for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e[3 * v] = 1.0;
   body_mass_ = e.dot(system_.M * e);
   rebuild_times_.integrator = lap();
+}
+
+// @sect4{LiverCut::assemble_at}
+//
+// The corotated f_int, warped tangent and W at u, unless they are those of the last u asked
+// about. A frozen step (chapter 6) asks for W(u_{n+1}) at its end and for f_int(u_{n+1}) and
+// K_R(u_{n+1}) at the next step's start: one rotation per point serves the three
+// (CutXfemModel::assemble_with_energy), where energy() and assemble() would find it twice.
+void LiverCut::assemble_at(const Eigen::VectorXd& u, kerf::RotationMethod rotation) {
+  if (assembled_.valid && assembled_.u.size() == u.size() && assembled_.u == u) return;
+  const auto start = std::chrono::steady_clock::now();
+  Eigen::VectorXd unused = Eigen::VectorXd::Zero(u.size());
+  tangent_assembler_->set_zero();
+  assembled_.energy = model_->assemble_with_energy(u, rotation, kerf::CorotationalTangent::warped, assembled_.f_int,
+                                                   tangent_assembler_.get(), &unused);
+  assembled_.u = u;
+  assembled_.valid = true;
+  step_times_.assemble += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // @sect4{LiverCut::advance_blade}
@@ -625,13 +669,17 @@ void LiverCut::do_timestep(int step, const kerf::BladeEdge* blade, bool blade_do
   auto start = clock::now();
   const bool crossed = path_ && advance_blade(blade, blade_done);
   step_times_.blade = seconds_since(start);
+  // An assembly made inside the topology change or the step (assemble_at: the new model's start
+  // state) is booked as assembly, not twice.
   if (crossed) {
     start = clock::now();
+    const double assembled_before = step_times_.assemble;
     apply_cut();
     ++topology_changes_;
-    step_times_.topology = seconds_since(start);
+    step_times_.topology = seconds_since(start) - (step_times_.assemble - assembled_before);
   }
   start = clock::now();
+  const double assembled_before_step = step_times_.assemble;
   const double work_before = account_.external_work;
   try {
     const kerf::NonlinearStepReport report = newmark_->step(state_);
@@ -640,7 +688,7 @@ void LiverCut::do_timestep(int step, const kerf::BladeEdge* blade, bool blade_do
   } catch (const std::exception& error) {
     throw std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(state_.t) + " s): " + error.what());
   }
-  step_times_.solve = seconds_since(start) - step_times_.assemble;
+  step_times_.solve = seconds_since(start) - (step_times_.assemble - assembled_before_step);
   state_.t = step * scene_.time.dt;
   energy_scale_ += std::abs(account_.external_work - work_before);
   check_state(step);

@@ -6,7 +6,10 @@
 // Tet10, with sign enrichments only and with chapter 5's branch functions, and compare after
 // every quad: the slots, the assembled stiffness, the corotated energy and forces of a random
 // state, and the pattern and the scatter map (the same matrix assembled both ways, with
-// clamped nodes and gripped enrichments in the DofMap).
+// clamped nodes and gripped enrichments in the DofMap). The split tets' piece masses
+// (SplitTetMasses) are kept the same way and compared the same way, and the assembly that gives
+// the energy with the forces (assemble_with_energy, one rotation per point for both) against
+// assemble() and energy().
 #include "kerf/cut/crack_front.hpp"
 #include "kerf/cut/cut_sheet.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
@@ -18,6 +21,7 @@
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/mesh/tet_neighbours.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
+#include "kerf/xfem/cut_xfem_mass.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 
@@ -66,7 +70,21 @@ struct Stage {
   std::unique_ptr<kerf::SurfaceEnrichment> sign;
   std::unique_ptr<kerf::CrackTipFunctions> functions;
   std::unique_ptr<kerf::CutXfemModel> scratch, grown;
+  std::unique_ptr<kerf::SplitTetMasses> grown_masses;
 };
+
+// The piece masses of every tet, kept from `before` and integrated from scratch: equal to the bit
+// (the same rule on the same pieces). Returns how many split tets the kept masses integrated.
+Eigen::Index check_same_masses(const kerf::CutXfemModel& scratch, const kerf::SplitTetMasses& grown) {
+  const kerf::SplitTetMasses from_scratch(scratch, support::subtets);
+  for (Eigen::Index t = 0; t < scratch.mesh().num_tets(); ++t) {
+    CAPTURE(t);
+    const std::vector<Eigen::MatrixXd> expected = from_scratch(t), actual = grown(t);
+    REQUIRE(actual.size() == expected.size());
+    for (std::size_t p = 0; p < expected.size(); ++p) CHECK((actual[p] - expected[p]).cwiseAbs().maxCoeff() == 0.0);
+  }
+  return grown.num_integrated();
+}
 
 // The shared comparison: slots, stiffness and forces, energy, and both assemblers.
 void check_same_model(const kerf::TetMesh& mesh, const kerf::CutXfemModel& scratch, const kerf::CutXfemModel& grown,
@@ -104,6 +122,16 @@ void check_same_model(const kerf::TetMesh& mesh, const kerf::CutXfemModel& scrat
   CHECK(max_abs(actual.K - expected.K) <= 1e-13 * max_abs(expected.K));
   CHECK((actual.f_int - expected.f_int).cwiseAbs().maxCoeff() <= 1e-13 * expected.f_int.cwiseAbs().maxCoeff());
   CHECK(grown.energy(u, true) == doctest::Approx(scratch.energy(u, true)).epsilon(1e-12));
+  // The forces and tangent with the energy: assemble()'s to the bit, energy()'s W to round-off
+  // (1/2 d^T K_q d summed instead of the strain density).
+  Eigen::VectorXd f_with_energy, rhs = Eigen::VectorXd::Zero(dofs.num_free);
+  grown_assembler->set_zero();
+  const double W = grown.assemble_with_energy(u, kerf::RotationMethod::automatic, kerf::CorotationalTangent::consistent, f_with_energy,
+                                              grown_assembler.get(), &rhs);
+  CHECK((f_with_energy - actual.f_int).cwiseAbs().maxCoeff() == 0.0);
+  CHECK(max_abs(grown_assembler->matrix() - actual.K) == 0.0);
+  CHECK(W > 0.0);
+  CHECK(W == doctest::Approx(grown.energy(u, true)).epsilon(1e-12));
   assembler = std::move(grown_assembler);
 }
 
@@ -113,8 +141,13 @@ void check_same_model(const kerf::TetMesh& mesh, const kerf::CutXfemModel& scrat
 // model that kept the points of its old pieces would differ there. With `tips`, chapter 5's branch functions
 // (topological, no blending correction) act where the sheet ends inside the box. Returns the
 // number of split tets whose points the grown model took from the model before, summed over
-// the stages (the comparisons must have compared something).
-int grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool tips) {
+// the stages, and of those whose masses SplitTetMasses copied (the comparisons must have
+// compared something).
+struct Kept {
+  int points = 0;
+  Eigen::Index masses = 0;
+};
+Kept grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool tips) {
   const auto neighbours = std::make_shared<const kerf::TetNeighbours>(kerf::tet_neighbours(mesh));
   std::mt19937 rng(7);
   kerf::CutSheet sheet(0.05);
@@ -122,6 +155,7 @@ int grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool ti
   std::unique_ptr<Stage> before;
   std::unique_ptr<kerf::SparseAssembler> assembler;
   int kept_split_tets = 0;
+  Eigen::Index integrated_masses = 0, split_with_masses = 0, copyable_masses = 0;
   for (int k = 1; k <= 12; ++k) {
     CAPTURE(k);
     const double x = 1.2 - 0.07 * k;
@@ -130,7 +164,7 @@ int grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool ti
     Eigen::AlignedBox3d changed;
     for (const kerf::SweptTriangle& triangle : added)
       for (const Eigen::Vector3d& corner : triangle) changed.extend(corner);
-    auto stage = std::make_unique<Stage>(Stage{kerf::CutSurfaces({sheet.surface()}), {}, {}, {}, {}, {}, {}, {}});
+    auto stage = std::make_unique<Stage>(Stage{kerf::CutSurfaces({sheet.surface()}), {}, {}, {}, {}, {}, {}, {}, {}});
     stage->pieces = before ? kerf::recut_mesh_into_pieces(mesh, stage->cuts, before->pieces, changed)
                            : kerf::cut_mesh_into_pieces(mesh, stage->cuts, neighbours);
     const kerf::SurfaceEnrichment* sign = nullptr;
@@ -158,9 +192,23 @@ int grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool ti
           before->grown->split(t) && !stage->grown->has_branch_functions(t) && !before->grown->has_branch_functions(t))
         ++kept_split_tets;
     check_same_model(mesh, *stage->scratch, *stage->grown, assembler.get(), assembler, rng);
+    // The tets whose pieces SplitTetMasses integrates by the rule, and those of them it can copy.
+    const auto has_rule_masses = [&](const Stage& s, Eigen::Index t) {
+      return s.grown->split(t) && s.pieces.num_pieces(t) > 1 && !s.grown->has_branch_functions(t);
+    };
+    for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+      if (!has_rule_masses(*stage, t)) continue;
+      ++split_with_masses;
+      if (before && stage->pieces.kept_from_previous[static_cast<std::size_t>(t)] && has_rule_masses(*before, t)) ++copyable_masses;
+    }
+    stage->grown_masses = std::make_unique<kerf::SplitTetMasses>(*stage->grown, support::subtets, before ? before->grown_masses.get() : nullptr);
+    integrated_masses += check_same_masses(*stage->scratch, *stage->grown_masses);
     before = std::move(stage);
   }
-  return kept_split_tets;
+  // The masses were integrated for the split tets that did not keep their pieces, and copied
+  // for the others (how many were kept, the callers assert).
+  CHECK(integrated_masses == split_with_masses - copyable_masses);
+  return {kept_split_tets, copyable_masses};
 }
 
 } // namespace
@@ -168,11 +216,25 @@ int grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool ti
 TEST_CASE("a model and a pattern grown from the ones before equal those built from scratch, quad after quad") {
   const kerf::TetMesh tet4 = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {4, 4, 4});
   // The counts of split tets whose points were kept, summed over the 12 stages, are measured
-  // (72, 72 and 15): the bounds only say that the reuse happened.
-  SUBCASE("Tet4, sign enrichments, the sheet through the tets") { CHECK(grow_and_compare(tet4, 0.37, 0.03, false) > 20); }
-  SUBCASE("Tet4, sign enrichments, the sheet in a plane of nodes and faces") { grow_and_compare(tet4, 0.5, 0.0, false); }
-  SUBCASE("Tet10, sign enrichments") { CHECK(grow_and_compare(kerf::tet10_from_tet4(tet4), 0.37, 0.03, false) > 20); }
-  SUBCASE("Tet4, with chapter 5's branch functions at the front") { CHECK(grow_and_compare(tet4, 0.37, 0.03, true) > 4); }
+  // (72, 72, 72 and 15; the masses copied: 72, 72 and 15): the bounds only say that the reuse
+  // happened.
+  SUBCASE("Tet4, sign enrichments, the sheet through the tets") {
+    const Kept kept = grow_and_compare(tet4, 0.37, 0.03, false);
+    CHECK(kept.points > 20);
+    CHECK(kept.masses > 20);
+  }
+  // On the plane the tets split into one piece each: nothing to integrate by the rule.
+  SUBCASE("Tet4, sign enrichments, the sheet in a plane of nodes and faces") { CHECK(grow_and_compare(tet4, 0.5, 0.0, false).points > 20); }
+  SUBCASE("Tet10, sign enrichments") {
+    const Kept kept = grow_and_compare(kerf::tet10_from_tet4(tet4), 0.37, 0.03, false);
+    CHECK(kept.points > 20);
+    CHECK(kept.masses > 20);
+  }
+  SUBCASE("Tet4, with chapter 5's branch functions at the front") {
+    const Kept kept = grow_and_compare(tet4, 0.37, 0.03, true);
+    CHECK(kept.points > 4);
+    CHECK(kept.masses > 4);
+  }
 }
 
 TEST_CASE("a tet cut anew into as many pieces as before gets new points") {
@@ -205,6 +267,31 @@ TEST_CASE("a tet cut anew into as many pieces as before gets new points") {
   std::mt19937 rng(11);
   std::unique_ptr<kerf::SparseAssembler> assembler;
   check_same_model(mesh, scratch, grown, nullptr, assembler, rng);
+  // The masses too: every split tet integrated again, none copied by its piece count alone.
+  const kerf::SplitTetMasses masses_first(model_first, support::subtets);
+  const kerf::SplitTetMasses masses_second(grown, support::subtets, &masses_first);
+  CHECK(check_same_masses(scratch, masses_second) == kerf::SplitTetMasses(scratch, support::subtets).num_integrated());
+}
+
+TEST_CASE("a model or masses grown from pieces that do not say which tets they kept are refused") {
+  const kerf::TetMesh mesh = kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 2});
+  kerf::CutSheet sheet(0.5);
+  sheet.offer({{1.2, 0.37, 1.2}, {1.2, 0.37, -0.2}});
+  sheet.offer({{-0.2, 0.37, 1.2}, {-0.2, 0.37, -0.2}}, true);
+  const kerf::CutSurfaces cuts({sheet.surface()});
+  const kerf::MeshPieces pieces = kerf::cut_mesh_into_pieces(mesh, cuts, std::make_shared<const kerf::TetNeighbours>(kerf::tet_neighbours(mesh)));
+  const kerf::SurfaceEnrichment enrichment = kerf::make_surface_enrichment(mesh, pieces);
+  const kerf::CutXfemModel model(mesh, tissue, pieces, enrichment, support::subtets);
+  const kerf::SplitTetMasses masses(model, support::subtets);
+  kerf::MeshPieces unsaid = pieces;
+  unsaid.kept_from_previous.clear();
+  CHECK_THROWS_AS(kerf::CutXfemModel(model, unsaid, enrichment), std::invalid_argument);
+  const kerf::CutXfemModel from_scratch(mesh, tissue, unsaid, enrichment, support::subtets);
+  CHECK_THROWS_AS(kerf::SplitTetMasses(from_scratch, support::subtets, &masses), std::invalid_argument);
+  // cut_mesh_into_pieces says "none kept": every split tet is integrated again.
+  const kerf::CutXfemModel again(model, pieces, enrichment);
+  CHECK(kerf::SplitTetMasses(again, support::subtets, &masses).num_integrated() == masses.num_integrated());
+  CHECK(masses.num_integrated() > 0);
 }
 
 TEST_CASE("an assembler grown from another refuses elements whose mesh nodes or numbering changed") {

@@ -105,9 +105,15 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts) {
 namespace {
 
 // The pieces of every tet, from `pieces_of(t, X)` (nullptr: no cut triangle meets it), then the
-// counts and the glue: the two steps of cut_mesh_into_pieces and recut_mesh_into_pieces.
-template <class PiecesOf>
-MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours, PiecesOf pieces_of);
+// counts and the glue: the two steps of cut_mesh_into_pieces and recut_mesh_into_pieces. The
+// glue across face a of tet t is `glue_of(t, a)`'s where that is not nullptr (the face's two
+// tets kept their pieces), else found from the face's polygons.
+template <class PiecesOf, class GlueOf>
+MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours, PiecesOf pieces_of,
+                           GlueOf glue_of);
+
+// No glue known beforehand.
+const std::vector<PieceGlue>* no_glue(Eigen::Index, int) { return nullptr; }
 
 } // namespace
 
@@ -118,7 +124,7 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, st
     if (triangles.empty()) return nullptr;
     split = split_tet_by_triangles(X, triangles);
     return &*split;
-  });
+  }, no_glue);
   result.kept_from_previous.assign(static_cast<std::size_t>(mesh.num_tets()), 0);
   return result;
 }
@@ -147,6 +153,12 @@ MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, 
     if (triangles.empty()) return nullptr;
     split = split_tet_by_triangles(X, triangles);
     return &*split;
+  }, [&](Eigen::Index t, int a) -> const std::vector<PieceGlue>* {
+    // Both tets of the face kept their pieces: so does the face, and its glue is the previous one.
+    const int s = previous.neighbours->across(t, a);
+    const int e = previous.entry[static_cast<std::size_t>(t)];
+    if (e < 0 || !kept[static_cast<std::size_t>(t)] || !kept[static_cast<std::size_t>(s)]) return nullptr;
+    return &previous.glues[static_cast<std::size_t>(e)][static_cast<std::size_t>(a)];
   });
   result.kept_from_previous = std::move(kept);
   return result;
@@ -154,8 +166,9 @@ MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, 
 
 namespace {
 
-template <class PiecesOf>
-MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours, PiecesOf pieces_of) {
+template <class PiecesOf, class GlueOf>
+MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours, PiecesOf pieces_of,
+                           GlueOf glue_of) {
   MeshPieces result;
   result.neighbours = std::move(neighbours);
   const Eigen::Index T = mesh.num_tets();
@@ -190,6 +203,10 @@ MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::sh
     for (int a = 0; a < 4; ++a) {
       const int s = result.neighbours->across(t, a);
       if (s < 0) continue;
+      if (const std::vector<PieceGlue>* known = glue_of(t, a)) {
+        result.glues[e][static_cast<std::size_t>(a)] = *known;
+        continue;
+      }
       face_polygons(mesh, result, t, a, my_face, mine);
       face_polygons(mesh, result, s, result.neighbours->across_face(t, a), their_face, theirs);
       double face_area = 0.0;

@@ -34,12 +34,23 @@ void add_consistent_tet(const CutXfemModel& model, Eigen::Index t, double densit
 
 } // namespace
 
-Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
-                                               const PieceRuleFunction& rule) {
+namespace {
+
+// lump_cut_xfem_mass with tet t's piece masses at unit density from piece_masses(t).
+template <typename PieceMasses>
+Eigen::SparseMatrix<double> lump_mass(const CutXfemModel& model, double density, LumpingScheme scheme, const PieceMasses& piece_masses) {
   const TetMesh& mesh = model.mesh();
   const int n = mesh.nodes_per_tet();
+  // A DOF node's own mass (i, i) is summed in a vector, the couplings (i, k) of the enrichments
+  // and the branch tets' blocks as triplets: a few thousand triplets to sort, not 12 per node of
+  // every tet.
+  Eigen::VectorXd own = Eigen::VectorXd::Zero(model.num_dof_nodes());
   std::vector<Eigen::Triplet<double>> entries;
   const auto add = [&](int i, int j, double value) {
+    if (i == j) {
+      own[i] += value;
+      return;
+    }
     for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, value);
   };
   if (scheme == LumpingScheme::schoch_eq_81_82) require_no_crack_tip_functions(model, "lump_cut_xfem_mass");
@@ -48,7 +59,7 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
       add_consistent_tet(model, t, density, add);
       continue;
     }
-    const std::vector<Eigen::MatrixXd> masses = cut_xfem_piece_masses(model, t, 1.0, rule);
+    const std::vector<Eigen::MatrixXd> masses = piece_masses(t);
     if (scheme == LumpingScheme::schoch_eq_81_82) {
       double element_volume = 0.0;
       for (const Eigen::MatrixXd& m : masses) element_volume += m.sum();
@@ -78,10 +89,24 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
       }
     }
   }
+  for (Eigen::Index i = 0; i < own.size(); ++i)
+    for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * i + c, own[i]);
   const Eigen::Index size = 3 * model.num_dof_nodes();
   Eigen::SparseMatrix<double> M(size, size);
   M.setFromTriplets(entries.begin(), entries.end());
   return M;
+}
+
+} // namespace
+
+Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
+                                               const PieceRuleFunction& rule) {
+  return lump_mass(model, density, scheme, [&](Eigen::Index t) { return cut_xfem_piece_masses(model, t, 1.0, rule); });
+}
+
+Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
+                                               const SplitTetMasses& masses) {
+  return lump_mass(model, density, scheme, masses);
 }
 
 Eigen::VectorXd lumped_gravity_load(const CutXfemModel& model, double density, const Eigen::Vector3d& g,

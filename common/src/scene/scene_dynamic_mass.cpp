@@ -20,6 +20,12 @@ Eigen::SparseMatrix<double> scene_cut_xfem_mass(const Scene& scene, const CutXfe
   return lump_cut_xfem_mass(model, scene.material.density, *scheme, rule);
 }
 
+Eigen::SparseMatrix<double> scene_cut_xfem_mass(const Scene& scene, const CutXfemModel& model, const SplitTetMasses& masses) {
+  const std::optional<LumpingScheme> scheme = scene_lumping_scheme(scene);
+  if (!scheme) return assemble_cut_xfem_mass(model, scene.material.density, masses);
+  return lump_cut_xfem_mass(model, scene.material.density, *scheme, masses);
+}
+
 Eigen::VectorXd scene_cut_xfem_dynamic_loads(const Scene& scene, const CutXfemModel& model, const BoundaryFaces& boundary,
                                              const PieceRuleFunction& rule) {
   const std::optional<LumpingScheme> scheme = scene_lumping_scheme(scene);

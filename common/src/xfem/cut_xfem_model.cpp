@@ -106,9 +106,20 @@ std::shared_ptr<const CutXfemModel::WholeTets> CutXfemModel::integrate_whole_tet
     piece.enrichment_slot.assign(static_cast<std::size_t>(n), -1);
     for (std::size_t q = 0; q < standard.points.size(); ++q)
       piece.points.push_back(point_at_reference<Point>(standard.points[q], J_inverse, standard.weights[q] * volume_scale, n));
+    if (n == 4) piece = with_tet4_stiffness(std::move(piece), material);
     whole->position_force_squared[static_cast<std::size_t>(t)] = (piece_stiffness(piece.points, n, material) * nodal_positions(mesh, t)).squaredNorm();
   }
   return whole;
+}
+
+CutXfemModel::Piece CutXfemModel::with_tet4_stiffness(Piece piece, const LinearMaterial& material) {
+  // assemble_tet<4>'s one point: the first point's gradients (all are equal) with the total weight.
+  double weight = 0.0;
+  for (const Point& point : piece.points) weight += point.weight;
+  piece.tet4_stiffness.setZero();
+  if (!piece.points.empty())
+    add_stiffness_integrand<4>(piece.points.front().G.template topRows<4>(), weight, material.mu(), material.lambda(), piece.tet4_stiffness);
+  return piece;
 }
 
 CutXfemModel::CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
@@ -214,7 +225,7 @@ void CutXfemModel::build(const CutXfemModel* before) {
     const auto new_piece = [&](int p, std::vector<Point> points) {
       Piece piece{std::vector<int>(static_cast<std::size_t>(n)), std::move(points), {}, {}, {}, {}, 0};
       for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, p);
-      return piece;
+      return n == 4 && branch_nodes.empty() ? with_tet4_stiffness(std::move(piece), material) : piece;
     };
     std::vector<Piece> data;
     if (branch_nodes.empty() && (list.empty() || np == 1)) {
@@ -453,7 +464,7 @@ Eigen::Index CutXfemModel::num_piece_points() const {
 template <int n>
 void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                                 bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
-                                CorotationStatistics& stats, ElementBuffers& buffers) const {
+                                CorotationStatistics& stats, ElementBuffers& buffers, double* energy) const {
   constexpr int m3 = 3 * n;
   const std::span<const Piece> pieces = integrated_pieces(t);
 
@@ -479,25 +490,35 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
     }
     Eigen::Matrix<double, m3, 1> f_p = Eigen::Matrix<double, m3, 1>::Zero();
     Eigen::Matrix<double, m3, m3> K_p = Eigen::Matrix<double, m3, m3>::Zero();
-    const auto add_point = [&](const Eigen::Matrix<double, n, 3>& G, double weight) {
-      Eigen::Matrix<double, m3, m3> K_q = Eigen::Matrix<double, m3, m3>::Zero();
-      add_stiffness_integrand<n>(G, weight, mu, lambda, K_q);
+    const auto add_point = [&](const Eigen::Matrix<double, m3, m3>& K_q, const Eigen::Matrix<double, n, 3>& G, double weight) {
       if (corotated) {
-        add_corotated_point<n>(K_q, G, X, u_p, weight, mu, lambda, rotation, tangent, f_p, assembler ? &K_p : nullptr, &stats);
+        const PolarDecomposition polar =
+            add_corotated_point<n>(K_q, G, X, u_p, weight, mu, lambda, rotation, tangent, f_p, assembler ? &K_p : nullptr, &stats);
+        if (energy) { // 1/2 d^T K_q d with the point's own rotation (energy()'s sum)
+          const Eigen::Matrix<double, m3, 1> d = corotated_displacement<n>(polar.R, X, u_p);
+          *energy += 0.5 * d.dot(K_q * d);
+        }
       } else {
         Eigen::Matrix<double, m3, 1> u_vector;
         for (int a = 0; a < n; ++a) u_vector.template segment<3>(3 * a) = u_p.row(a).transpose();
-        f_p += K_q * u_vector;
+        const Eigen::Matrix<double, m3, 1> K_u = K_q * u_vector;
+        f_p += K_u;
         K_p += K_q;
+        if (energy) *energy += 0.5 * u_vector.dot(K_u);
       }
     };
     if constexpr (n == 4) {
-      // A Tet4's gradients are constant: the piece is one point with the rule's total weight.
+      // A Tet4's gradients are constant: the piece is one point with the rule's total weight,
+      // whose stiffness the piece keeps (with_tet4_stiffness).
       double weight = 0.0;
       for (const Point& point : piece.points) weight += point.weight;
-      if (!piece.points.empty()) add_point(piece.points.front().G.template topRows<4>(), weight);
+      if (!piece.points.empty()) add_point(piece.tet4_stiffness, piece.points.front().G.template topRows<4>(), weight);
     } else {
-      for (const Point& point : piece.points) add_point(point.G, point.weight);
+      for (const Point& point : piece.points) {
+        Eigen::Matrix<double, m3, m3> K_q = Eigen::Matrix<double, m3, m3>::Zero();
+        add_stiffness_integrand<n>(point.G, point.weight, mu, lambda, K_q);
+        add_point(K_q, point.G, point.weight);
+      }
     }
     // Scatter with T_p: node a's row goes to u_a and, if enriched here, to its enrichment.
     for (int a = 0; a < n; ++a) {
@@ -624,17 +645,37 @@ double CutXfemModel::branch_tet_energy(Eigen::Index t, const Eigen::VectorXd& u,
   return energy;
 }
 
-CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
-                                            Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
+CorotationStatistics CutXfemModel::assemble_all(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                                Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                                                double* energy) const {
   CorotationStatistics stats;
   f_int = Eigen::VectorXd::Zero(3 * num_dof_nodes());
   ElementBuffers buffers(slots_.cols());
   for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
-    if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0) assemble_branch_tet(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
-    else if (mesh_.order() == 1) assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers);
-    else assemble_tet<10>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers);
+    if (first_branch_slot_[static_cast<std::size_t>(t)] >= 0) {
+      assemble_branch_tet(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats);
+      if (energy) *energy += branch_tet_energy(t, u, true, rotation); // a few tets: their pieces' rotations again
+    } else if (mesh_.order() == 1) {
+      assemble_tet<4>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers, energy);
+    } else {
+      assemble_tet<10>(t, u, rotation, tangent, true, f_int, assembler, rhs_free, stats, buffers, energy);
+    }
   }
   return stats;
+}
+
+CorotationStatistics CutXfemModel::assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                            Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const {
+  return assemble_all(u, rotation, tangent, f_int, assembler, rhs_free, nullptr);
+}
+
+double CutXfemModel::assemble_with_energy(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                          Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                                          CorotationStatistics* stats) const {
+  double energy = 0.0;
+  const CorotationStatistics statistics = assemble_all(u, rotation, tangent, f_int, assembler, rhs_free, &energy);
+  if (stats) *stats = statistics;
+  return energy;
 }
 
 template <int n>

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "kerf/quadrature/piece_quadrature_rule.hpp"
+#include "kerf/xfem/cut_xfem_mass.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include <Eigen/Core>
@@ -77,6 +78,9 @@ enum class LumpingScheme {
 ///             piece's volume only, degree 0, for virtual_tet and schoch_eq_81_82)
 Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
                                                const PieceRuleFunction& rule);
+/// The same with the piece masses kept from one model to the next of a growing cut (chapter 7).
+Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
+                                               const SplitTetMasses& masses);
 
 /// The body load rho g that goes with `scheme` (3 num_dof_nodes()).
 ///

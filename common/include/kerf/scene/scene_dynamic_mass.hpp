@@ -19,6 +19,8 @@ std::optional<LumpingScheme> scene_lumping_scheme(const Scene& scene);
 /// The mass on all 3 num_dof_nodes() DOFs: the consistent XFEM mass (cut_xfem_mass.hpp) or the
 /// lumped one (lumped_mass.hpp), with the scene's density. `rule` is the scene's piece rule.
 Eigen::SparseMatrix<double> scene_cut_xfem_mass(const Scene& scene, const CutXfemModel& model, const PieceRuleFunction& rule);
+/// The same with the split tets' piece masses kept from one model to the next (chapter 7).
+Eigen::SparseMatrix<double> scene_cut_xfem_mass(const Scene& scene, const CutXfemModel& model, const SplitTetMasses& masses);
 
 /// The scene's loads (cut_xfem_loads.hpp) with the body force that belongs to the mass: the
 /// consistent rho g for the consistent mass, the lumped one (lumped_gravity_load) for a lumped

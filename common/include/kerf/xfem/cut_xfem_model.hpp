@@ -151,6 +151,14 @@ public:
   /// rotation (corotated_piece.hpp), of which assemble()'s force is the gradient only up to the
   /// strain's variation over the piece times its rotation (exactly when `corotated` is false).
   double energy(const Eigen::VectorXd& u, bool corotated, RotationMethod rotation = RotationMethod::automatic) const;
+  /// assemble() (corotated) and energy(u, true) at once: each point's rotation, found once, gives
+  /// its force, its tangent and its 1/2 d^T K_q d. A time step asks for W at its end state, where
+  /// the next step assembles (chapter 7's step takes both from one pass). f_int and the tangent
+  /// are assemble()'s to the bit; the energy is energy()'s to round-off (it is the same sum,
+  /// 1/2 d^T K_q d instead of the strain density that energy() evaluates).
+  /// @returns the strain energy W(u) (J)
+  double assemble_with_energy(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent, Eigen::VectorXd& f_int,
+                              SparseAssembler* assembler, Eigen::VectorXd* rhs_free, CorotationStatistics* stats = nullptr) const;
   /// The body-force load sum_p T_p^T int_p N^T rho g (3 num_dof_nodes()).
   Eigen::VectorXd gravity_load(double density, const Eigen::Vector3d& g) const;
   /// The displacement at x (m) in tet t, on the piece that holds x (one above the cut, if x lies
@@ -255,7 +263,13 @@ private:
     Eigen::MatrixX3d mean_gradient;
     int side = 0; // +1 / -1 if the piece lies above / below the cut, for theta's sign (0: not known)
     double volume = 0.0; // in a tet with branch nodes: the sum of the weights (m^3), computed once
+    // In a Tet4 without branch nodes: the phantom element's stiffness over the piece, eq. (30)
+    // at its one gradient with the rule's total weight, computed once (with_tet4_stiffness): a
+    // Tet4's gradients are constant, so a step only turns it (R K_p R^T) and never rebuilds it.
+    Eigen::Matrix<double, 12, 12> tet4_stiffness = Eigen::Matrix<double, 12, 12>::Zero();
   };
+  // `piece` with its tet4_stiffness filled in (a Tet4 piece with points).
+  static Piece with_tet4_stiffness(Piece piece, const LinearMaterial& material);
   // At point q of a piece of tet t: one value per slot, the phantom element's N_a on node a's
   // slot and on the slot of the sign enrichment active there, and each branch function's value
   // (for_each_slot_value's g).
@@ -288,7 +302,10 @@ private:
   template <int n>
   void assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                     bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
-                    CorotationStatistics& stats, ElementBuffers& buffers) const;
+                    CorotationStatistics& stats, ElementBuffers& buffers, double* energy = nullptr) const;
+  // assemble() and assemble_with_energy(): every tet, its energy summed into `energy` if given.
+  CorotationStatistics assemble_all(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent, Eigen::VectorXd& f_int,
+                                    SparseAssembler* assembler, Eigen::VectorXd* rhs_free, double* energy) const;
 
   // One tet's share of energy().
   template <int n>
