@@ -473,8 +473,13 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
   // The element's force and matrix on its slots, in the caller's buffers: no allocation per tet.
   auto f_e = buffers.f.head(3 * slots);
   auto K_e = buffers.K.topLeftCorner(3 * slots, 3 * slots);
-  f_e.setZero();
-  if (assembler) K_e.setZero();
+  // A tet of one piece without enrichments (most of them) is its own phantom element: its force
+  // and matrix go straight to the global ones, without the element buffers.
+  const bool plain = slots == n && pieces.size() == 1;
+  if (!plain) {
+    f_e.setZero();
+    if (assembler) K_e.setZero();
+  }
 
   Eigen::Matrix<double, n, 3> X;
   for (int a = 0; a < n; ++a) X.row(a) = mesh_.nodes.row(mesh_.tets(t, a));
@@ -519,6 +524,11 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
         add_stiffness_integrand<n>(point.G, point.weight, mu, lambda, K_q);
         add_point(K_q, point.G, point.weight);
       }
+    }
+    if (plain) {
+      for (int a = 0; a < n; ++a) f_int.segment<3>(3 * mesh_.tets(t, a)) += f_p.template segment<3>(3 * a);
+      if (assembler) assembler->add_element_matrix(t, K_p, *rhs_free);
+      return;
     }
     // Scatter with T_p: node a's row goes to u_a and, if enriched here, to its enrichment.
     for (int a = 0; a < n; ++a) {
