@@ -7,9 +7,9 @@
 // every quad: the slots, the assembled stiffness, the corotated energy and forces of a random
 // state, and the pattern and the scatter map (the same matrix assembled both ways, with
 // clamped nodes and gripped enrichments in the DofMap). The split tets' piece masses
-// (SplitTetMasses) are kept the same way and compared the same way, and the assembly that gives
-// the energy with the forces (assemble_with_energy, one rotation per point for both) against
-// assemble() and energy().
+// (SplitTetMasses) are kept the same way and compared the same way, with the masses made from
+// them; and the energy that comes with the forces (assemble_with_energy) against energy() and,
+// as the forces' potential, against a central difference.
 #include "kerf/cut/crack_front.hpp"
 #include "kerf/cut/cut_sheet.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
@@ -21,7 +21,9 @@
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/mesh/tet_neighbours.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
+#include "kerf/dynamics/lumped_mass.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
+#include "kerf/xfem/split_tet_masses.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 
@@ -73,22 +75,34 @@ struct Stage {
   std::unique_ptr<kerf::SplitTetMasses> grown_masses;
 };
 
-// The piece masses of every tet, kept from `before` and integrated from scratch: equal to the bit
-// (the same rule on the same pieces). Returns how many split tets the kept masses integrated.
-Eigen::Index check_same_masses(const kerf::CutXfemModel& scratch, const kerf::SplitTetMasses& grown) {
+// The piece masses of every tet, kept from `before` (`grown`, made for the model `model`) and
+// integrated from scratch: equal to the bit (the same rule on the same pieces); and the lumped
+// and consistent masses built from them equal the ones the rule gives directly. Returns how many
+// split tets the kept masses integrated.
+Eigen::Index check_same_masses(const kerf::CutXfemModel& scratch, const kerf::CutXfemModel& model, const kerf::SplitTetMasses& grown) {
   const kerf::SplitTetMasses from_scratch(scratch, support::subtets);
   for (Eigen::Index t = 0; t < scratch.mesh().num_tets(); ++t) {
     CAPTURE(t);
-    const std::vector<Eigen::MatrixXd> expected = from_scratch(t), actual = grown(t);
+    const std::vector<Eigen::MatrixXd> expected = from_scratch(scratch, t), actual = grown(model, t);
     REQUIRE(actual.size() == expected.size());
     for (std::size_t p = 0; p < expected.size(); ++p) CHECK((actual[p] - expected[p]).cwiseAbs().maxCoeff() == 0.0);
   }
+  const double density = 1060.0;
+  for (const kerf::LumpingScheme scheme : {kerf::LumpingScheme::virtual_tet, kerf::LumpingScheme::row_sum}) {
+    const Eigen::SparseMatrix<double> expected = kerf::lump_cut_xfem_mass(scratch, density, scheme, support::subtets);
+    CHECK(max_abs(kerf::lump_cut_xfem_mass(model, density, scheme, grown) - expected) <= 1e-15 * max_abs(expected));
+  }
+  // Consistent: density times the unit masses instead of density inside the sum, round-off apart.
+  const Eigen::SparseMatrix<double> expected = kerf::assemble_cut_xfem_mass(scratch, density, support::subtets);
+  CHECK(max_abs(kerf::assemble_cut_xfem_mass(model, density, grown) - expected) <= 1e-14 * max_abs(expected));
   return grown.num_integrated();
 }
 
-// The shared comparison: slots, stiffness and forces, energy, and both assemblers.
+// The shared comparison: slots, stiffness and forces, energy, and both assemblers. With
+// `exact_gradient` (no branch functions), also that the forces are the energy's gradient.
 void check_same_model(const kerf::TetMesh& mesh, const kerf::CutXfemModel& scratch, const kerf::CutXfemModel& grown,
-                      const kerf::SparseAssembler* assembler_before, std::unique_ptr<kerf::SparseAssembler>& assembler, std::mt19937& rng) {
+                      const kerf::SparseAssembler* assembler_before, std::unique_ptr<kerf::SparseAssembler>& assembler, std::mt19937& rng,
+                      bool exact_gradient) {
   REQUIRE(grown.num_dof_nodes() == scratch.num_dof_nodes());
   REQUIRE(grown.assembly_slots() == scratch.assembly_slots());
   CHECK(grown.position_force_norm() == doctest::Approx(scratch.position_force_norm()).epsilon(1e-12));
@@ -122,16 +136,24 @@ void check_same_model(const kerf::TetMesh& mesh, const kerf::CutXfemModel& scrat
   CHECK(max_abs(actual.K - expected.K) <= 1e-13 * max_abs(expected.K));
   CHECK((actual.f_int - expected.f_int).cwiseAbs().maxCoeff() <= 1e-13 * expected.f_int.cwiseAbs().maxCoeff());
   CHECK(grown.energy(u, true) == doctest::Approx(scratch.energy(u, true)).epsilon(1e-12));
-  // The forces and tangent with the energy: assemble()'s to the bit, energy()'s W to round-off
-  // (1/2 d^T K_q d summed instead of the strain density).
+  // The energy that comes with the forces and the warped tangent (chapter 7's step): energy()'s,
+  // which sums the strain density instead of 1/2 d^T K_q d, and, where every point has its own
+  // polar rotation (no branch functions), the potential of the forces: a central difference of
+  // W along a random direction equals f . du.
   Eigen::VectorXd f_with_energy, rhs = Eigen::VectorXd::Zero(dofs.num_free);
   grown_assembler->set_zero();
-  const double W = grown.assemble_with_energy(u, kerf::RotationMethod::automatic, kerf::CorotationalTangent::consistent, f_with_energy,
-                                              grown_assembler.get(), &rhs);
-  CHECK((f_with_energy - actual.f_int).cwiseAbs().maxCoeff() == 0.0);
-  CHECK(max_abs(grown_assembler->matrix() - actual.K) == 0.0);
-  CHECK(W > 0.0);
-  CHECK(W == doctest::Approx(grown.energy(u, true)).epsilon(1e-12));
+  const auto W = [&](const Eigen::VectorXd& v, Eigen::VectorXd& f) {
+    return grown.assemble_with_energy(v, kerf::RotationMethod::automatic, kerf::CorotationalTangent::warped, f, grown_assembler.get(), &rhs);
+  };
+  const double W_u = W(u, f_with_energy);
+  CHECK(W_u == doctest::Approx(grown.energy(u, true)).epsilon(1e-12));
+  if (exact_gradient) {
+    Eigen::VectorXd du(u.size()), unused;
+    for (Eigen::Index i = 0; i < du.size(); ++i) du[i] = value(rng);
+    const double h = 1e-4; // u moves by 1e-6: central difference error ~h^2, round-off ~1e-16 W / h
+    const double slope = (W(u + h * du, unused) - W(u - h * du, unused)) / (2.0 * h);
+    CHECK(slope == doctest::Approx(f_with_energy.dot(du)).epsilon(1e-6));
+  }
   assembler = std::move(grown_assembler);
 }
 
@@ -191,7 +213,7 @@ Kept grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool t
       if (before && stage->pieces.kept_from_previous[static_cast<std::size_t>(t)] && stage->grown->split(t) &&
           before->grown->split(t) && !stage->grown->has_branch_functions(t) && !before->grown->has_branch_functions(t))
         ++kept_split_tets;
-    check_same_model(mesh, *stage->scratch, *stage->grown, assembler.get(), assembler, rng);
+    check_same_model(mesh, *stage->scratch, *stage->grown, assembler.get(), assembler, rng, !tips);
     // The tets whose pieces SplitTetMasses integrates by the rule, and those of them it can copy.
     const auto has_rule_masses = [&](const Stage& s, Eigen::Index t) {
       return s.grown->split(t) && s.pieces.num_pieces(t) > 1 && !s.grown->has_branch_functions(t);
@@ -202,7 +224,7 @@ Kept grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool t
       if (before && stage->pieces.kept_from_previous[static_cast<std::size_t>(t)] && has_rule_masses(*before, t)) ++copyable_masses;
     }
     stage->grown_masses = std::make_unique<kerf::SplitTetMasses>(*stage->grown, support::subtets, before ? before->grown_masses.get() : nullptr);
-    integrated_masses += check_same_masses(*stage->scratch, *stage->grown_masses);
+    integrated_masses += check_same_masses(*stage->scratch, *stage->grown, *stage->grown_masses);
     before = std::move(stage);
   }
   // The masses were integrated for the split tets that did not keep their pieces, and copied
@@ -266,11 +288,11 @@ TEST_CASE("a tet cut anew into as many pieces as before gets new points") {
   const kerf::CutXfemModel grown(model_first, pieces_second, enrichment_second);
   std::mt19937 rng(11);
   std::unique_ptr<kerf::SparseAssembler> assembler;
-  check_same_model(mesh, scratch, grown, nullptr, assembler, rng);
+  check_same_model(mesh, scratch, grown, nullptr, assembler, rng, true);
   // The masses too: every split tet integrated again, none copied by its piece count alone.
   const kerf::SplitTetMasses masses_first(model_first, support::subtets);
   const kerf::SplitTetMasses masses_second(grown, support::subtets, &masses_first);
-  CHECK(check_same_masses(scratch, masses_second) == kerf::SplitTetMasses(scratch, support::subtets).num_integrated());
+  CHECK(check_same_masses(scratch, grown, masses_second) == kerf::SplitTetMasses(scratch, support::subtets).num_integrated());
 }
 
 TEST_CASE("a model or masses grown from pieces that do not say which tets they kept are refused") {

@@ -32,10 +32,6 @@ void add_consistent_tet(const CutXfemModel& model, Eigen::Index t, double densit
     for (Eigen::Index s = 0; s < m.cols(); ++s) add(slots(t, r), slots(t, s), m(r, s));
 }
 
-} // namespace
-
-namespace {
-
 // lump_cut_xfem_mass with tet t's piece masses at unit density from piece_masses(t).
 template <typename PieceMasses>
 Eigen::SparseMatrix<double> lump_mass(const CutXfemModel& model, double density, LumpingScheme scheme, const PieceMasses& piece_masses) {
@@ -106,7 +102,7 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double
 
 Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
                                                const SplitTetMasses& masses) {
-  return lump_mass(model, density, scheme, masses);
+  return lump_mass(model, density, scheme, [&](Eigen::Index t) { return masses(model, t); });
 }
 
 Eigen::VectorXd lumped_gravity_load(const CutXfemModel& model, double density, const Eigen::Vector3d& g,

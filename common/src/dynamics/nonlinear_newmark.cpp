@@ -62,6 +62,7 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
     std::vector<Entry> column;
     for (Eigen::Index c = 0; c < n; ++c) {
       const Eigen::Index j = column_of_free[static_cast<std::size_t>(c)];
+      if (j < 0) throw std::invalid_argument("NonlinearNewmarkIntegrator: the DofMap numbers its free DOFs with gaps");
       column.clear();
       Eigen::Index m = M.outerIndexPtr()[j], k = K.outerIndexPtr()[j];
       const Eigen::Index m_end = M.outerIndexPtr()[j + 1], k_end = K.outerIndexPtr()[j + 1];
@@ -82,8 +83,11 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
       }
       outer[static_cast<std::size_t>(c) + 1] = static_cast<int>(inner.size());
     }
-    std::vector<double> zeros(inner.size(), 0.0);
-    A_ff_ = Eigen::Map<const Eigen::SparseMatrix<double>>(n, n, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), zeros.data());
+    // The compressed arrays written in place: every entry stays stored, whatever its value.
+    A_ff_.resize(n, n);
+    A_ff_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+    std::copy(outer.begin(), outer.end(), A_ff_.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), A_ff_.innerIndexPtr());
     from_M_ = std::move(from_M);
     from_K_ = std::move(from_K);
     pattern_K_nonzeros_ = K.nonZeros();
@@ -221,7 +225,7 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
   const Eigen::VectorXd du = next.u - state.u;
   const Eigen::VectorXd free_mask = Pt_ * Eigen::VectorXd::Ones(P_.rows());
   const Eigen::VectorXd prescribed_mask = Eigen::VectorXd::Ones(du.size()) - free_mask;
-  // C is linear: C v_bar = (C v_n + C v_{n+1}) / 2, from the products the residuals use.
+  // C is linear: C v_bar = (C v_n + C v_{n+1}) / 2; C v_{n+1} is the one the residual used.
   const Eigen::VectorXd C_v_start = C_times(state.v);
   const Eigen::VectorXd r_start = M * state.a + C_v_start + f_int_start - f_start;
   const Eigen::VectorXd r_next = M * next.a + C_v_next + f_int - f_next;

@@ -101,8 +101,9 @@ TetMesh mesh_implicit_domain(const std::function<double(const Eigen::Vector3d&)>
   // The tets in the order of a Hilbert curve through their centroids, and the vertices numbered
   // in the order those tets first use them (so only used ones are kept). Mesh_3's own cell order
   // follows its memory, scattered over the organ; along the curve, neighbouring tets and nodes
-  // get nearby numbers, so that an assembly or a matrix-vector product walks memory in order:
-  // chapter 7's step is 10-20 % faster for it. The order is deterministic (as Mesh_3's is).
+  // get nearby numbers, so that an assembly or a matrix-vector product walks memory in order
+  // (the design page, "Assembly into a fixed pattern", measures it). The order is deterministic,
+  // as Mesh_3's is.
   std::vector<Triangulation::Cell_handle> cells;
   std::vector<Point> centroids;
   for (auto cell = c3t3.cells_in_complex_begin(); cell != c3t3.cells_in_complex_end(); ++cell) {

@@ -60,33 +60,6 @@ std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Ei
   return masses;
 }
 
-SplitTetMasses::SplitTetMasses(const CutXfemModel& model, const PieceRuleFunction& rule, const SplitTetMasses* before)
-    : model_(model), rule_(rule) {
-  const TetMesh& mesh = model.mesh();
-  const MeshPieces& pieces = model.pieces();
-  if (before && pieces.kept_from_previous.size() != static_cast<std::size_t>(mesh.num_tets()))
-    throw std::invalid_argument("SplitTetMasses: the pieces do not say which tets kept their pieces (make them with recut_mesh_into_pieces)");
-  split_.assign(static_cast<std::size_t>(mesh.num_tets()), {});
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    // cut_xfem_piece_masses integrates the pieces by `rule` only here: split, several pieces,
-    // no branch functions. Elsewhere its masses are the element's or the model's points'.
-    const int np = pieces.num_pieces(t);
-    if (model.has_branch_functions(t) || !model.split(t) || np == 1) continue;
-    const std::size_t k = static_cast<std::size_t>(t);
-    if (before && pieces.kept_from_previous[k] && before->split_[k].size() == static_cast<std::size_t>(np)) {
-      split_[k] = before->split_[k];
-    } else {
-      split_[k] = cut_xfem_piece_masses(model, t, 1.0, rule);
-      ++integrated_;
-    }
-  }
-}
-
-std::vector<Eigen::MatrixXd> SplitTetMasses::operator()(Eigen::Index t) const {
-  const std::vector<Eigen::MatrixXd>& stored = split_[static_cast<std::size_t>(t)];
-  return stored.empty() ? cut_xfem_piece_masses(model_, t, 1.0, rule_) : stored;
-}
-
 namespace {
 
 // assemble_cut_xfem_mass with tet t's piece masses at `density` from piece_masses(t).
@@ -139,7 +112,7 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
 
 Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const SplitTetMasses& masses) {
   return assemble_mass(model, density, [&](Eigen::Index t) {
-    std::vector<Eigen::MatrixXd> scaled = masses(t);
+    std::vector<Eigen::MatrixXd> scaled = masses(model, t);
     for (Eigen::MatrixXd& m : scaled) m *= density;
     return scaled;
   });

@@ -116,9 +116,10 @@ CutXfemModel::Piece CutXfemModel::with_tet4_stiffness(Piece piece, const LinearM
   // assemble_tet<4>'s one point: the first point's gradients (all are equal) with the total weight.
   double weight = 0.0;
   for (const Point& point : piece.points) weight += point.weight;
-  piece.tet4_stiffness.setZero();
+  auto K = std::make_shared<Eigen::Matrix<double, 12, 12>>(Eigen::Matrix<double, 12, 12>::Zero());
   if (!piece.points.empty())
-    add_stiffness_integrand<4>(piece.points.front().G.template topRows<4>(), weight, material.mu(), material.lambda(), piece.tet4_stiffness);
+    add_stiffness_integrand<4>(piece.points.front().G.template topRows<4>(), weight, material.mu(), material.lambda(), *K);
+  piece.tet4_stiffness = std::move(K);
   return piece;
 }
 
@@ -506,10 +507,8 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
       } else {
         Eigen::Matrix<double, m3, 1> u_vector;
         for (int a = 0; a < n; ++a) u_vector.template segment<3>(3 * a) = u_p.row(a).transpose();
-        const Eigen::Matrix<double, m3, 1> K_u = K_q * u_vector;
-        f_p += K_u;
+        f_p += K_q * u_vector;
         K_p += K_q;
-        if (energy) *energy += 0.5 * u_vector.dot(K_u);
       }
     };
     if constexpr (n == 4) {
@@ -517,7 +516,7 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
       // whose stiffness the piece keeps (with_tet4_stiffness).
       double weight = 0.0;
       for (const Point& point : piece.points) weight += point.weight;
-      if (!piece.points.empty()) add_point(piece.tet4_stiffness, piece.points.front().G.template topRows<4>(), weight);
+      if (!piece.points.empty()) add_point(*piece.tet4_stiffness, piece.points.front().G.template topRows<4>(), weight);
     } else {
       for (const Point& point : piece.points) {
         Eigen::Matrix<double, m3, m3> K_q = Eigen::Matrix<double, m3, m3>::Zero();

@@ -48,7 +48,8 @@ Eigen::Matrix<double, 3 * n, 1> corotated_displacement(const Eigen::Matrix3d& R,
 /// Adds one rotation point's corotated force and tangent to f and Kt (n nodes, 3n DOFs).
 ///
 /// K is the linear stiffness that belongs to this point (for a Tet4 the whole element
-/// stiffness of chapter 1; for a Tet10 one quadrature point's share of it), G its n x 3
+/// stiffness of chapter 1; for a Tet10 one quadrature point's share of it), symmetric (only
+/// its blocks on and above the diagonal are read: R K R^T is symmetric too), G its n x 3
 /// physical shape gradients there, X the n x 3 reference positions, u the nodes' n x 3
 /// displacements, and `weight` the volume the point stands for (V for a Tet4, w_q |det J| for
 /// a Tet10). With F = I + u^T G = R S (exactly x^T G, since the rows of G sum to zero):

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "kerf/quadrature/piece_quadrature_rule.hpp"
-#include "kerf/xfem/cut_xfem_mass.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
+#include "kerf/xfem/split_tet_masses.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -78,7 +78,8 @@ enum class LumpingScheme {
 ///             piece's volume only, degree 0, for virtual_tet and schoch_eq_81_82)
 Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
                                                const PieceRuleFunction& rule);
-/// The same with the piece masses kept from one model to the next of a growing cut (chapter 7).
+/// The same with the split tets' piece masses from `masses` (made for this model; chapter 7
+/// keeps them from one model to the next of a growing cut).
 Eigen::SparseMatrix<double> lump_cut_xfem_mass(const CutXfemModel& model, double density, LumpingScheme scheme,
                                                const SplitTetMasses& masses);
 

@@ -5,6 +5,7 @@
 #include "kerf/dynamics/lumped_mass.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/scene/scene.hpp"
+#include "kerf/xfem/split_tet_masses.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include <Eigen/Core>
@@ -19,7 +20,7 @@ std::optional<LumpingScheme> scene_lumping_scheme(const Scene& scene);
 /// The mass on all 3 num_dof_nodes() DOFs: the consistent XFEM mass (cut_xfem_mass.hpp) or the
 /// lumped one (lumped_mass.hpp), with the scene's density. `rule` is the scene's piece rule.
 Eigen::SparseMatrix<double> scene_cut_xfem_mass(const Scene& scene, const CutXfemModel& model, const PieceRuleFunction& rule);
-/// The same with the split tets' piece masses kept from one model to the next (chapter 7).
+/// The same with the split tets' piece masses from `masses` (made for this model; chapter 7).
 Eigen::SparseMatrix<double> scene_cut_xfem_mass(const Scene& scene, const CutXfemModel& model, const SplitTetMasses& masses);
 
 /// The scene's loads (cut_xfem_loads.hpp) with the body force that belongs to the mass: the

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "kerf/xfem/cut_xfem_model.hpp"
+#include "kerf/xfem/split_tet_masses.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -55,32 +56,7 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
 std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Eigen::Index t, double density,
                                                    const PieceRuleFunction& rule);
 
-/// cut_xfem_piece_masses() at unit density for every tet, with the split tets' pieces
-/// integrated once and kept from one model to the next of a growing cut. Chapter 7 rebuilds
-/// its mass at every change of topology, and integrating every split tet's pieces anew by
-/// `rule` was most of that: a tet that kept its pieces (MeshPieces::kept_from_previous) keeps
-/// their masses, as CutXfemModel keeps their points.
-class SplitTetMasses {
-public:
-  /// Integrates the pieces of every split tet of `model` (kept by reference) without branch
-  /// functions, or copies them from `before` (the masses of the model the cut grew from) where
-  /// the tet kept its pieces.
-  /// @throws std::invalid_argument if `before` is given and the pieces do not say which tets
-  ///         were kept (make them with recut_mesh_into_pieces)
-  SplitTetMasses(const CutXfemModel& model, const PieceRuleFunction& rule, const SplitTetMasses* before = nullptr);
-  /// Tet t's piece masses at unit density: cut_xfem_piece_masses(model, t, 1, rule), to the bit.
-  std::vector<Eigen::MatrixXd> operator()(Eigen::Index t) const;
-  /// How many split tets the constructor integrated (the others were copied from `before`).
-  Eigen::Index num_integrated() const { return integrated_; }
-
-private:
-  const CutXfemModel& model_;
-  PieceRuleFunction rule_;
-  std::vector<std::vector<Eigen::MatrixXd>> split_; // per tet: its pieces' masses if split; empty otherwise
-  Eigen::Index integrated_ = 0;
-};
-
-/// assemble_cut_xfem_mass() with the piece masses from `masses` (scaled by `density`).
+/// assemble_cut_xfem_mass() with the piece masses from `masses` (of this model; scaled by `density`).
 Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const SplitTetMasses& masses);
 
 } // namespace kerf

@@ -266,9 +266,10 @@ private:
     // In a Tet4 without branch nodes: the phantom element's stiffness over the piece, eq. (30)
     // at its one gradient with the rule's total weight, computed once (with_tet4_stiffness): a
     // Tet4's gradients are constant, so a step only turns it (R K_p R^T) and never rebuilds it.
-    Eigen::Matrix<double, 12, 12> tet4_stiffness = Eigen::Matrix<double, 12, 12>::Zero();
+    // Shared by the copies of the piece; null in a Tet10 model and in tets with branch nodes.
+    std::shared_ptr<const Eigen::Matrix<double, 12, 12>> tet4_stiffness = nullptr;
   };
-  // `piece` with its tet4_stiffness filled in (a Tet4 piece with points).
+  // `piece` with its tet4_stiffness made (a Tet4 piece).
   static Piece with_tet4_stiffness(Piece piece, const LinearMaterial& material);
   // At point q of a piece of tet t: one value per slot, the phantom element's N_a on node a's
   // slot and on the slot of the sign enrichment active there, and each branch function's value
@@ -298,7 +299,8 @@ private:
     Eigen::VectorXd f;
     Eigen::MatrixXd K;
   };
-  // One tet's forces (and tangent): linear (corotated false, R = I) or corotated.
+  // One tet's forces (and tangent): linear (corotated false, R = I) or corotated, and with
+  // `energy` (corotated only) its strain energy 1/2 d^T K_q d added.
   template <int n>
   void assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                     bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
