@@ -223,16 +223,24 @@ void CutXfemModel::build(const CutXfemModel* before) {
       if (k < 0) return -1;
       return n + static_cast<int>(std::lower_bound(list.begin(), list.end(), k) - list.begin());
     };
-    const auto new_piece = [&](int p, std::vector<Point> points) {
+    // Piece p on `points`; a Tet4 piece takes `stiffness` when the points are another piece's
+    // (shared with it), else its own is computed.
+    const auto new_piece = [&](int p, std::vector<Point> points, std::shared_ptr<const Eigen::Matrix<double, 12, 12>> stiffness = nullptr) {
       Piece piece{std::vector<int>(static_cast<std::size_t>(n)), std::move(points), {}, {}, {}, {}, 0};
       for (int a = 0; a < n; ++a) piece.enrichment_slot[static_cast<std::size_t>(a)] = slot_of(a, p);
-      return n == 4 && branch_nodes.empty() ? with_tet4_stiffness(std::move(piece), material) : piece;
+      if (n != 4 || !branch_nodes.empty()) return piece;
+      if (!stiffness) return with_tet4_stiffness(std::move(piece), material);
+      piece.tet4_stiffness = std::move(stiffness);
+      return piece;
     };
     std::vector<Piece> data;
     if (branch_nodes.empty() && (list.empty() || np == 1)) {
       // The whole tet by its own rule (whole_): with no enrichment it is chapter 1's element;
       // one piece on which some enrichment is 1 takes the same points.
-      if (!list.empty()) data.push_back(new_piece(0, whole_->pieces[static_cast<std::size_t>(t)].points));
+      if (!list.empty()) {
+        const Piece& whole = whole_->pieces[static_cast<std::size_t>(t)];
+        data.push_back(new_piece(0, whole.points, whole.tet4_stiffness));
+      }
       position_force_squared_[static_cast<std::size_t>(t)] = whole_->position_force_squared[static_cast<std::size_t>(t)];
       piece_data_[static_cast<std::size_t>(t)] = std::move(data);
       continue;
@@ -240,7 +248,8 @@ void CutXfemModel::build(const CutXfemModel* before) {
     if (branch_nodes.empty() && before && pieces.kept_from_previous[static_cast<std::size_t>(t)] && !before->has_branch_functions(t) &&
         before->piece_data_[static_cast<std::size_t>(t)].size() == static_cast<std::size_t>(np)) {
       // The same pieces as in `before`, which integrated them by the same rule: its points.
-      for (const Piece& kept : before->piece_data_[static_cast<std::size_t>(t)]) data.push_back(new_piece(static_cast<int>(data.size()), kept.points));
+      for (const Piece& kept : before->piece_data_[static_cast<std::size_t>(t)])
+        data.push_back(new_piece(static_cast<int>(data.size()), kept.points, kept.tet4_stiffness));
       position_force_squared_[static_cast<std::size_t>(t)] = before->position_force_squared_[static_cast<std::size_t>(t)];
       piece_data_[static_cast<std::size_t>(t)] = std::move(data);
       continue;
