@@ -232,7 +232,8 @@ private:
   void setup_system();
   bool advance_blade(const kerf::BladeEdge* world, bool blade_done);
   void assemble_at(const Eigen::VectorXd& u, kerf::RotationMethod rotation);
-  void do_timestep(int step, const kerf::BladeEdge* blade, bool blade_done);
+  void cut(const kerf::BladeEdge* blade, bool blade_done);
+  void do_timestep(int step, bool cut_next, const kerf::BladeEdge* next, bool next_done);
   void check_state(int step) const;
   void output_step(int step);
   void draw(int step);
@@ -408,6 +409,17 @@ void LiverCut::setup_visual(bool need_view, bool on_screen) {
 // (the new model's DofMap, made here for that) keep their values. One map, built once, carries
 // u, v and a.
 void LiverCut::apply_cut() {
+  // cuts.csv's check that no energy goes in: the old model's energies of the state, before the
+  // transfer. Diagnostics, booked as output: the simulation itself never needs the old model's W
+  // here (do_timestep closes the step with the new model's).
+  double kinetic_before = 0.0, elastic_before = 0.0;
+  if (model_ && cuts_csv_.is_open()) {
+    const auto start = std::chrono::steady_clock::now();
+    kinetic_before = 0.5 * state_.v.dot(system_.M * state_.v);
+    elastic_before = scene_.model == "corotational" ? model_->energy(state_.u, true, kerf::scene_quasi_static_settings(scene_).rotation)
+                                                    : model_->energy(state_.u, false);
+    step_times_.output += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   std::vector<kerf::TriangleSurface> surfaces;
   for (const kerf::CutSheet& sheet : sheets_)
     if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
@@ -433,7 +445,6 @@ void LiverCut::apply_cut() {
   kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(*model, held_);
   rebuild_times_.model = lap();
   const bool rebuild = model_ != nullptr;
-  const double kinetic_before = account_.kinetic, elastic_before = account_.elastic;
   if (model_) {
     const kerf::CutStateTransfer transfer(*model_, *model, kerf::BranchStateRule::fit, &dofs);
     state_.u = transfer(state_.u);
@@ -473,7 +484,10 @@ void LiverCut::apply_cut() {
   if (rebuild && cuts_csv_.is_open()) {
     // Nothing lost: the pieces' volumes (the weights of their rules) and the mass e^T M e of a
     // unit translation against the uncut mesh's, and the energies of the same field in the old
-    // and the new DOFs.
+    // and the new DOFs (tests/chapter_07 asserts they are equal). The new model's W is its
+    // assembly at the state, which the step's energy and the next step's start take from it.
+    const kerf::EnergyAccount after = newmark_->start_account(state_);
+    const auto start = std::chrono::steady_clock::now();
     double volume = 0.0;
     for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t)
       for (int p = 0; p < (model_->split(t) ? pieces_->num_pieces(t) : 1); ++p) volume += model_->integrated_volume(t, p);
@@ -481,8 +495,9 @@ void LiverCut::apply_cut() {
     std::snprintf(row, sizeof row, "%d,%.17g,%d,%ld,%ld,%.6e,%.6e,%.17g,%.17g,%.17g,%.17g\n", topology_changes_ + 1, state_.t,
                   static_cast<int>(crossing_->crossed_tets().size()), static_cast<long>(this->enrichment().num_enrichments()),
                   static_cast<long>(dofs_.num_free), volume / mesh_volume_ - 1.0, body_mass_ / (scene_.material.density * mesh_volume_) - 1.0,
-                  kinetic_before, account_.kinetic, elastic_before, account_.elastic);
+                  kinetic_before, after.kinetic, elastic_before, after.elastic);
     cuts_csv_ << row;
+    step_times_.output += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 }
 
@@ -580,12 +595,6 @@ void LiverCut::setup_system() {
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
     state_ = newmark_->initial_state(zero, zero, 0.0);
     account_ = newmark_->start_account(state_);
-  } else {
-    // The same field in the new DOFs: the energies are recomputed from the new matrices and must
-    // equal the old ones (tests/chapter_07 asserts it); the work and dissipation run on.
-    const kerf::EnergyAccount fresh = newmark_->start_account(state_);
-    account_.kinetic = fresh.kinetic;
-    account_.elastic = fresh.elastic;
   }
   Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
   for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e[3 * v] = 1.0;
@@ -662,38 +671,53 @@ bool LiverCut::advance_blade(const kerf::BladeEdge* away_or_world, bool blade_do
 // As in chapter 6: no NaN, and an energy bounded by what was put in.
 void LiverCut::check_state(int step) const { kerf::check_bounded_state(state_, account_, energy_scale_, step); }
 
-// @sect4{LiverCut::do_timestep}
+// @sect4{LiverCut::cut}
 //
-// The blade first (it cuts the body as the last step left it), a rebuild if it crossed a tet,
-// then chapter 6's step.
-void LiverCut::do_timestep(int step, const kerf::BladeEdge* blade, bool blade_done) {
+// The blade's next edge cuts the body as it stands, and if it crossed a tet the model is rebuilt
+// (apply_cut). The time goes to the step being timed; an assembly made inside (the new model's,
+// at the current state) is booked as assembly, and cuts.csv's energy check as output.
+void LiverCut::cut(const kerf::BladeEdge* blade, bool blade_done) {
   using clock = std::chrono::steady_clock;
-  const auto seconds_since = [](clock::time_point start) { return std::chrono::duration<double>(clock::now() - start).count(); };
-  step_times_ = {};
   auto start = clock::now();
   const bool crossed = path_ && advance_blade(blade, blade_done);
-  step_times_.blade = seconds_since(start);
-  // An assembly made inside the topology change or the step (assemble_at: the new model's start
-  // state) is booked as assembly, not twice.
-  if (crossed) {
-    start = clock::now();
-    const double assembled_before = step_times_.assemble;
-    apply_cut();
-    ++topology_changes_;
-    step_times_.topology = seconds_since(start) - (step_times_.assemble - assembled_before);
-  }
+  step_times_.blade += std::chrono::duration<double>(clock::now() - start).count();
+  if (!crossed) return;
   start = clock::now();
+  const double assembled_before = step_times_.assemble, output_before = step_times_.output;
+  apply_cut();
+  ++topology_changes_;
+  step_times_.topology += std::chrono::duration<double>(clock::now() - start).count() - (step_times_.assemble - assembled_before) -
+                          (step_times_.output - output_before);
+}
+
+// @sect4{LiverCut::do_timestep}
+//
+// Chapter 6's step on the model as the blade has cut it, then the blade's edge for the next step
+// (`next`, if `cut_next`; nullptr: away from the tissue) cuts the body this step has moved. The
+// step's energy account closes last: its W(u_{n+1}) comes from the model the next step starts on,
+// whose assembly at u_{n+1} is the next step's f_int and K_R as well. Were the blade to cut at the
+// start of the next step instead (the same cut: the same edge on the same state), a step that
+// changes the topology would assemble twice, the old model at u_{n+1} for W and the new one for
+// the next step; the field, and so W, is the same in both (cut_state_transfer.hpp).
+void LiverCut::do_timestep(int step, bool cut_next, const kerf::BladeEdge* next, bool next_done) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
   const double assembled_before_step = step_times_.assemble;
   const double work_before = account_.external_work;
+  kerf::NonlinearStepReport report;
   try {
-    const kerf::NonlinearStepReport report = newmark_->step(state_);
-    newmark_->add_step(account_, state_, report);
+    report = newmark_->open_step(state_);
     if (!report.converged) ++newton_failures_;
   } catch (const std::exception& error) {
     throw std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(state_.t) + " s): " + error.what());
   }
-  step_times_.solve = seconds_since(start) - (step_times_.assemble - assembled_before_step);
+  step_times_.solve += std::chrono::duration<double>(clock::now() - start).count() - (step_times_.assemble - assembled_before_step);
   state_.t = step * scene_.time.dt;
+  if (cut_next) cut(next, next_done);
+  // W(u_{n+1}) of the current model: the new one's if the blade crossed a tet (apply_cut assembled
+  // it there), else one assembly that the next step's start reuses (assemble_at).
+  kerf::NonlinearNewmarkIntegrator::close_step(report, system_.elastic_energy(state_.u));
+  newmark_->add_step(account_, state_, report);
   energy_scale_ += std::abs(account_.external_work - work_before);
   check_state(step);
 }
@@ -828,15 +852,27 @@ void LiverCut::run() {
     open(history_csv_, *options_.probes_history, "step,t,probe,ux,uy,uz\n");
   }
   energy_scale_ = account_.kinetic + account_.elastic;
+  // The blade cuts the body as the step before left it: the first step's edge here, on the body at
+  // rest, each later one at the end of the step before (do_timestep). timings.csv books a cut in
+  // the row of the step that left the body as it was cut (row 0 for this one).
+  const int steps = scene_.time.steps;
+  const auto blade_at = [this](int step) {
+    const double t = step * scene_.time.dt;
+    return std::pair{path_ ? path_->edge_at(t) : kerf::BladeEdge{}, path_ && t >= path_->end_time()};
+  };
+  step_times_ = {};
+  if (path_) {
+    const auto [blade, done] = blade_at(1);
+    cut(&blade, done);
+  }
   output_step(0);
 
   start = clock::now();
   auto last_line = start;
-  const int steps = scene_.time.steps;
   for (int step = 1; step <= steps; ++step) {
-    const double t = step * scene_.time.dt;
-    const kerf::BladeEdge blade = path_ ? path_->edge_at(t) : kerf::BladeEdge{};
-    do_timestep(step, &blade, path_ && t >= path_->end_time());
+    step_times_ = {};
+    const auto [next, next_done] = blade_at(step + 1);
+    do_timestep(step, path_ && step < steps, &next, next_done);
     output_step(step);
     const double simulated = step_times_.blade + step_times_.topology + step_times_.assemble + step_times_.solve;
     max_step_seconds_ = std::max(max_step_seconds_, simulated);
@@ -944,7 +980,10 @@ void LiverCut::run_interactive() {
     }
     if (edge && !path_) path_ = std::make_unique<kerf::BladePath>(std::vector<kerf::BladeKeyframe>{{0.0, *edge}, {1.0, *edge}});
     const auto start = std::chrono::steady_clock::now();
-    do_timestep(step, edge ? &*edge : nullptr, false);
+    // The edge under the cursor now is the blade of the next step: it cuts the body as this step
+    // leaves it (do_timestep), as a scripted path's edge at t_{n+1} does.
+    step_times_ = {};
+    do_timestep(step, true, edge ? &*edge : nullptr, false);
     draw(step);
     view_->window().Render();
     const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -101,7 +101,10 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
 
 Eigen::VectorXd NonlinearNewmarkIntegrator::damping_force(const Eigen::SparseMatrix<double>& K_R, const Eigen::VectorXd& v) const {
   Eigen::VectorXd force = system_.rayleigh_alpha * (system_.M * v);
-  if (system_.rayleigh_beta != 0.0) force += system_.rayleigh_beta * (K_R * v);
+  if (system_.rayleigh_beta != 0.0) {
+    const Eigen::VectorXd K_v = K_R.selfadjointView<Eigen::Upper>() * v;
+    force += system_.rayleigh_beta * K_v;
+  }
   return force;
 }
 
@@ -140,6 +143,7 @@ EnergyAccount NonlinearNewmarkIntegrator::start_account(const DynamicState& stat
 }
 
 void NonlinearNewmarkIntegrator::add_step(EnergyAccount& account, const DynamicState& state, const NonlinearStepReport& report) const {
+  if (report.awaiting_elastic_end) throw std::logic_error("NonlinearNewmarkIntegrator::add_step: the step is still open (close_step)");
   account.kinetic = 0.5 * state.v.dot(system_.M * state.v);
   account.elastic = elastic_energy(state.u);
   account.external_work += report.energy.external_work;
@@ -147,7 +151,7 @@ void NonlinearNewmarkIntegrator::add_step(EnergyAccount& account, const DynamicS
   account.numerical += report.energy.numerical;
 }
 
-NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
+NonlinearStepReport NonlinearNewmarkIntegrator::open_step(DynamicState& state) {
   const double dt = dt_, beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
   const Eigen::SparseMatrix<double>& M = system_.M;
   const double t_next = state.t + dt;
@@ -172,7 +176,7 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
     next.u = combine(P_ * (predicted.u + (beta * dt * dt) * next.a), motion.u);
     next.v = combine(P_ * (predicted.v + (gamma * dt) * next.a), motion.v);
     if (settings_.update == RotationUpdate::frozen) {
-      f_int = f_int_start + K_start * (next.u - state.u);
+      f_int = f_int_start + K_start.selfadjointView<Eigen::Upper>() * (next.u - state.u);
     } else {
       system_.internal_force(next.u, CorotationalTangent::consistent, f_int, &K);
     }
@@ -232,12 +236,24 @@ NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
   report.energy.external_work = du.dot(0.5 * (f_start + f_next)) + du.cwiseProduct(prescribed_mask).dot(0.5 * (r_start + r_next));
   report.energy.damping = du.dot(0.5 * (C_v_start + C_v_next));
   const double kinetic_change = 0.5 * next.v.dot(M * next.v) - 0.5 * state.v.dot(M * state.v);
-  const double elastic_start = elastic_energy(state.u);
-  const double elastic_change = elastic_energy(next.u) - elastic_start;
-  report.energy.numerical = report.energy.external_work - report.energy.damping - kinetic_change - elastic_change;
+  // The balance without W(u_{n+1}), which close_step subtracts.
+  report.energy.numerical = report.energy.external_work - report.energy.damping - kinetic_change + elastic_energy(state.u);
+  report.awaiting_elastic_end = true;
   last_change_ = P_ * (next.a - state.a);
   state = std::move(next);
   return report;
+}
+
+NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
+  NonlinearStepReport report = open_step(state);
+  close_step(report, elastic_energy(state.u));
+  return report;
+}
+
+void NonlinearNewmarkIntegrator::close_step(NonlinearStepReport& report, double elastic_end) {
+  if (!report.awaiting_elastic_end) throw std::logic_error("NonlinearNewmarkIntegrator::close_step: the step is not open");
+  report.energy.numerical -= elastic_end;
+  report.awaiting_elastic_end = false;
 }
 
 } // namespace kerf

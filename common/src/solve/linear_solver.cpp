@@ -78,7 +78,7 @@ public:
 private:
   std::string name_;
   int factorisations_ = 0;
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Preconditioner> cg_;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Upper, Preconditioner> cg_;
 };
 
 } // namespace

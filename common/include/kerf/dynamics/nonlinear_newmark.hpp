@@ -26,7 +26,9 @@ struct PrescribedMotion {
 
 /// The internal force f_int(u) on all DOFs and, when `K` is given, its tangent on all DOFs
 /// (both triangles): the warped R K R^T (eq. 38) or the consistent one, as `tangent` asks. A
-/// linear body returns K u and K whatever `tangent` says.
+/// linear body returns K u and K whatever `tangent` says. The warped tangent is symmetric (so is
+/// the linear K): the step's products with it read its upper triangle only, half the memory
+/// traffic of the full matrix (chapter 7's results).
 using InternalForce = std::function<void(const Eigen::VectorXd& u, CorotationalTangent tangent, Eigen::VectorXd& f_int,
                                          Eigen::SparseMatrix<double>* K)>;
 
@@ -72,6 +74,8 @@ struct NonlinearStepReport {
   /// building the solves' matrices A_ff, and factorising and solving: the benchmark's phases.
   double matrix_seconds = 0.0;
   double solve_seconds = 0.0;
+  /// open_step's report: `energy.numerical` still lacks -W(u_{n+1}), which close_step subtracts.
+  bool awaiting_elastic_end = false;
 };
 
 /// Newmark in acceleration form (as newmark.hpp) on all DOFs: the free ones predicted and
@@ -103,9 +107,19 @@ public:
   DynamicState initial_state(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, double t0);
   /// The energy account at the start of a run: kinetic 1/2 v^T M v, elastic W(u).
   EnergyAccount start_account(const DynamicState& state) const;
-  /// Advances `state` to t + dt.
+  /// Advances `state` to t + dt: open_step, then close_step with W(u_{n+1}) of this system.
   NonlinearStepReport step(DynamicState& state);
+  /// step() but for the strain energy at its end, which the caller gives close_step. For a run
+  /// whose model changes between steps (chapter 7: the blade cuts the body as this step leaves
+  /// it, before the next step): the new model assembles at u_{n+1} for the next step's start
+  /// anyway, and the field, hence W, is the same in both models (cut_state_transfer.hpp), so its
+  /// W closes this step and the old model need not assemble there too.
+  NonlinearStepReport open_step(DynamicState& state);
+  /// Completes open_step's energy balance with W(u_{n+1}) (J).
+  /// @throws std::logic_error if the report is not open_step's, or was closed already
+  static void close_step(NonlinearStepReport& report, double elastic_end);
   /// Books a step in the account: the state's energies, the step's works.
+  /// @throws std::logic_error if the report is still open (open_step without close_step)
   void add_step(EnergyAccount& account, const DynamicState& state, const NonlinearStepReport& report) const;
   /// Numeric factorisations (or preconditioner set-ups) of the run so far (LinearSolver::factorisations).
   int factorisations() const { return solver_->factorisations(); }
