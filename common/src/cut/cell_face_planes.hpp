@@ -23,10 +23,14 @@ struct SnappedPlaneSide {
   }
 };
 
-// The plane of a face of a cell, with its outward normal: value > 0 outside the cell.
-inline SnappedPlaneSide face_plane(const CellFace& face, double tolerance) {
-  const Eigen::Vector3d n = polygon_area_vector(face.polygon).normalized();
+// The plane of a face of a cell, with its outward normal: value > 0 outside the cell. The second
+// form takes the face's area vector (polygon_area_vector) when the caller has it already.
+inline SnappedPlaneSide face_plane(const CellFace& face, const Eigen::Vector3d& area_vector, double tolerance) {
+  const Eigen::Vector3d n = area_vector.normalized();
   return {n, n.dot(face.polygon.front()), tolerance};
+}
+inline SnappedPlaneSide face_plane(const CellFace& face, double tolerance) {
+  return face_plane(face, polygon_area_vector(face.polygon), tolerance);
 }
 
 // Whether a face is more than a sliver: wider than the snap (1e-12 d), its width taken as its
@@ -35,12 +39,13 @@ inline SnappedPlaneSide face_plane(const CellFace& face, double tolerance) {
 // (an icosphere's vertices leave faces of 1e-22 d^2 there). Its normal is noise, it bounds
 // nothing the cell's other faces do not, and no material joins two cells through it: gluing
 // through it let the inside of a fine icosphere leak to the outside.
-inline bool has_area(const CellFace& face, double snap) {
+inline bool has_area(const CellFace& face, const Eigen::Vector3d& area_vector, double snap) {
   if (face.polygon.size() < 3) return false;
   double longest = 0.0;
   for (std::size_t k = 0; k < face.polygon.size(); ++k)
     longest = std::max(longest, (face.polygon[(k + 1) % face.polygon.size()] - face.polygon[k]).norm());
-  return polygon_area_vector(face.polygon).norm() > snap * longest;
+  return area_vector.norm() > snap * longest;
 }
+inline bool has_area(const CellFace& face, double snap) { return has_area(face, polygon_area_vector(face.polygon), snap); }
 
 } // namespace kerf

@@ -22,8 +22,13 @@ std::vector<int> pieces_containing(const TetPieces& pieces, const Eigen::Vector3
   for (std::size_t c = 0; c < pieces.cells.size(); ++c) {
     bool inside = true;
     for (const CellFace& face : pieces.cells[c].faces) {
-      if (!has_area(face, snap)) continue;
-      inside = inside && face_plane(face, tolerance)(x) <= 0.0;
+      // The area vector once for both questions; the first face x is outside of decides.
+      const Eigen::Vector3d area_vector = polygon_area_vector(face.polygon);
+      if (!has_area(face, area_vector, snap)) continue;
+      if (face_plane(face, area_vector, tolerance)(x) > 0.0) {
+        inside = false;
+        break;
+      }
     }
     const int p = pieces.cell_piece[c];
     if (inside && std::find(found.begin(), found.end(), p) == found.end()) found.push_back(p);

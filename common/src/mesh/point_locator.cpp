@@ -17,12 +17,17 @@ PointLocator::PointLocator(const TetMesh& mesh) : mesh_(mesh) {
 
   const auto num_buckets = static_cast<std::size_t>(buckets_.prod());
   std::vector<std::vector<int>> lists(num_buckets);
+  boxes_.resize(static_cast<std::size_t>(mesh.num_tets()));
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     Eigen::Vector3d lo = mesh.nodes.row(mesh.tets(t, 0)).transpose(), hi = lo;
     for (int a = 1; a < 4; ++a) {
       lo = lo.cwiseMin(mesh.nodes.row(mesh.tets(t, a)).transpose());
       hi = hi.cwiseMax(mesh.nodes.row(mesh.tets(t, a)).transpose());
     }
+    // x = sum lambda_a x_a with sum lambda_a = 1 and every lambda_a >= -1e-10 lies within
+    // 4e-10 of the corners' extent of the box: 1e-9 of the diagonal is a safe margin.
+    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(1e-9 * (hi - lo).norm());
+    boxes_[static_cast<std::size_t>(t)] = Eigen::AlignedBox3d(lo - margin, hi + margin);
     const Eigen::Vector3i b0 = bucket_of(lo), b1 = bucket_of(hi);
     for (int k = b0[2]; k <= b1[2]; ++k)
       for (int j = b0[1]; j <= b1[1]; ++j)
@@ -53,6 +58,7 @@ PointLocation PointLocator::locate(const Eigen::Vector3d& x) const {
   double best_min_lambda = -1e-10;
   for (int i = bucket_start_[bucket]; i < bucket_start_[bucket + 1]; ++i) {
     const int t = bucket_tets_[static_cast<std::size_t>(i)];
+    if (!boxes_[static_cast<std::size_t>(t)].contains(x)) continue;
     const Eigen::Vector3d x0 = mesh_.nodes.row(mesh_.tets(t, 0)).transpose();
     Eigen::Matrix3d J;
     for (int c = 0; c < 3; ++c) J.col(c) = mesh_.nodes.row(mesh_.tets(t, c + 1)).transpose() - x0;

@@ -5,6 +5,7 @@
 #include "kerf/mesh/tet_mesh.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace kerf {
@@ -36,6 +37,10 @@ private:
   Eigen::Vector3i buckets_;
   std::vector<int> bucket_start_; ///< CSR: tets of bucket b are bucket_tets_[bucket_start_[b] .. bucket_start_[b+1])
   std::vector<int> bucket_tets_;
+  /// Per tet: its bounding box grown by 1e-9 of its diagonal, which holds every point the
+  /// barycentric test with its 1e-10 tolerance could accept. A query solves for the barycentric
+  /// coordinates only in the tets of its bucket whose box holds it.
+  std::vector<Eigen::AlignedBox3d> boxes_;
 };
 
 } // namespace kerf
