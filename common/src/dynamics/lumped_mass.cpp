@@ -1,5 +1,7 @@
 #include "kerf/dynamics/lumped_mass.hpp"
 
+#include "kerf/fem/tet_mass.hpp"
+#include "kerf/mesh/tet_mesh.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
 
 #include <stdexcept>
@@ -10,13 +12,15 @@ namespace kerf {
 namespace {
 
 // The diagonal D_p (n entries, kg) that `scheme` gives the piece with unit-density mass m.
-Eigen::VectorXd piece_diagonal(const Eigen::MatrixXd& m, double density, LumpingScheme scheme) {
+template <class Mass>
+Eigen::Matrix<double, Mass::RowsAtCompileTime, 1> piece_diagonal(const Eigen::MatrixBase<Mass>& m, double density, LumpingScheme scheme) {
+  using Diagonal = Eigen::Matrix<double, Mass::RowsAtCompileTime, 1>;
   const double volume = m.sum();
   const auto n = static_cast<double>(m.rows());
   switch (scheme) {
   case LumpingScheme::row_sum: return density * m.rowwise().sum();
   case LumpingScheme::hrz: return density * volume / m.diagonal().sum() * m.diagonal();
-  case LumpingScheme::virtual_tet: return Eigen::VectorXd::Constant(m.rows(), density * volume / n);
+  case LumpingScheme::virtual_tet: return Diagonal::Constant(m.rows(), density * volume / n);
   case LumpingScheme::schoch_eq_81_82: break;
   }
   throw std::logic_error("piece_diagonal: eqs. 81-82 are not lumped piece by piece");
@@ -50,7 +54,16 @@ Eigen::SparseMatrix<double> lump_mass(const CutXfemModel& model, double density,
     for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, value);
   };
   if (scheme == LumpingScheme::schoch_eq_81_82) require_no_crack_tip_functions(model, "lump_cut_xfem_mass");
+  const TetMatrix& slots = model.assembly_slots();
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
+    // A Tet4 that no enrichment reaches (most of them) is one whole piece whose phantom nodes
+    // are its own nodes (cut_xfem_piece_masses gives it tet4_mass): its diagonal straight onto
+    // its nodes, without the general path's per-tet matrices. Eqs. 81-82 give it the same m / n.
+    if (n == 4 && (slots.cols() == 4 || slots(t, 4) < 0) && scheme != LumpingScheme::schoch_eq_81_82) {
+      const Eigen::Vector4d D = piece_diagonal(tet4_mass(tet_corners(mesh, t), 1.0), density, scheme);
+      for (int a = 0; a < 4; ++a) own[mesh.tets(t, a)] += D[a];
+      continue;
+    }
     if (model.has_branch_functions(t)) {
       add_consistent_tet(model, t, density, add);
       continue;

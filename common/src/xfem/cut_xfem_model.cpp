@@ -511,7 +511,15 @@ void CutXfemModel::assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, Rotati
             add_corotated_point<n>(K_q, G, X, u_p, weight, mu, lambda, rotation, tangent, f_p, assembler ? &K_p : nullptr, &stats);
         if (energy) { // 1/2 d^T K_q d with the point's own rotation (energy()'s sum)
           const Eigen::Matrix<double, m3, 1> d = corotated_displacement<n>(polar.R, X, u_p);
-          *energy += 0.5 * d.dot(K_q * d);
+          if constexpr (n == 4) {
+            // A Tet4 piece is one point, and f_p was zero before it: f_p = R (K_q d) node by node
+            // (eq. 39), so K_q d = R^T f_p without a second 12 x 12 product.
+            double d_K_d = 0.0;
+            for (int a = 0; a < n; ++a) d_K_d += d.template segment<3>(3 * a).dot(polar.R.transpose() * f_p.template segment<3>(3 * a));
+            *energy += 0.5 * d_K_d;
+          } else {
+            *energy += 0.5 * d.dot(K_q * d);
+          }
         }
       } else {
         Eigen::Matrix<double, m3, 1> u_vector;
