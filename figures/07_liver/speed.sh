@@ -69,8 +69,11 @@ if [ "${1:-}" != "--charts" ]; then
   # Three runs of each size: the step times of one run move by 10-15 % from run to run on this
   # shared machine (3 December 2026, five runs at 10k: 28.0 to 31.8 ms per cutting step), so the
   # table gives the run with the median cutting step and the spread of the three.
-  for n in "${sizes[@]}"; do
-    for r in 1 2 3; do run "tets_${n}_run$r" "$n" "$(steps_of "$n")" 0; done
+  # The three rounds go through every size in turn, so that a slow spell of the shared machine
+  # (seen here: the same binary 35 % slower for minutes, with no load inside this machine) spreads
+  # over the sizes instead of falling on all three runs of one.
+  for r in 1 2 3; do
+    for n in "${sizes[@]}"; do run "tets_${n}_run$r" "$n" "$(steps_of "$n")" 0; done
   done
   for n in "${render_sizes[@]}"; do run "render_$n" "$n" "$(render_steps_of "$n")" 1 xvfb-run -a; done
   lscpu | sed -n 's/^Model name: *//p' | head -1 > "$work/cpu"
@@ -200,7 +203,7 @@ p("  before and after each run is in `speed.csv` (`load_before`, `load_after`): 
 p("  1 means other processes took turns on our core. *Share of a core* is the run's processor time")
 p("  (user + system, /usr/bin/time) over its wall time: below 1, the wall times here are longer than on an")
 p("  idle core, by about 1 / share (the share is of the whole run, setup included, so this is an estimate).")
-p("- Three runs per size; a row is the run whose cutting step is the median of the three, and the")
+p("- Three rounds over all sizes; a row is the run whose cutting step is the median of its size's three, and the")
 p("  cutting-step column gives the three runs' range (the same program on the same scene varies by 10-15 %")
 p("  from run to run on this shared machine). The times are of `timings.csv` (steady clock, per step). A *cutting step* is")
 p("  any step from the first topology change on (the blade is in the tissue in all of them: it stops")
