@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <ctime>
-#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -57,8 +56,21 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
       int row;
       Eigen::Index from_M, from_K;
     };
+    // make_dof_map numbers the free DOFs in the order of the DOFs: then a merged column comes out
+    // sorted by free row, and is written straight into the arrays (reserved for the most entries
+    // the merge can give, so that they are not copied as they grow).
+    bool in_order = true;
+    for (int i = 0, last = -1; i < static_cast<int>(index.size()); ++i)
+      if (index[static_cast<std::size_t>(i)] >= 0) {
+        in_order = in_order && index[static_cast<std::size_t>(i)] > last;
+        last = index[static_cast<std::size_t>(i)];
+      }
     std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
     std::vector<Eigen::Index> from_M, from_K;
+    const auto most = static_cast<std::size_t>(M.nonZeros() + K.nonZeros());
+    inner.reserve(most);
+    from_M.reserve(most);
+    from_K.reserve(most);
     std::vector<Entry> column;
     for (Eigen::Index c = 0; c < n; ++c) {
       const Eigen::Index j = column_of_free[static_cast<std::size_t>(c)];
@@ -66,13 +78,26 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
       column.clear();
       Eigen::Index m = M.outerIndexPtr()[j], k = K.outerIndexPtr()[j];
       const Eigen::Index m_end = M.outerIndexPtr()[j + 1], k_end = K.outerIndexPtr()[j + 1];
-      while (m < m_end || k < k_end) { // both columns are sorted by row: merge them
-        const Eigen::Index row_M = m < m_end ? M.innerIndexPtr()[m] : std::numeric_limits<Eigen::Index>::max();
-        const Eigen::Index row_K = k < k_end ? K.innerIndexPtr()[k] : std::numeric_limits<Eigen::Index>::max();
+      const auto add = [&](Eigen::Index row, Eigen::Index in_M, Eigen::Index in_K) {
+        const int free_row = index[static_cast<std::size_t>(row)];
+        if (free_row < 0) return;
+        if (!in_order) {
+          column.push_back({free_row, in_M, in_K});
+          return;
+        }
+        inner.push_back(free_row);
+        from_M.push_back(in_M);
+        from_K.push_back(in_K);
+      };
+      // Both columns are sorted by row: merge them while both have entries, then the rest of
+      // the longer one (a lumped M has one entry per column, so this is most of K's column).
+      while (m < m_end && k < k_end) {
+        const Eigen::Index row_M = M.innerIndexPtr()[m], row_K = K.innerIndexPtr()[k];
         const Eigen::Index row = std::min(row_M, row_K);
-        const Entry entry{index[static_cast<std::size_t>(row)], row_M == row ? m++ : -1, row_K == row ? k++ : -1};
-        if (entry.row >= 0) column.push_back(entry);
+        add(row, row_M == row ? m++ : -1, row_K == row ? k++ : -1);
       }
+      for (; m < m_end; ++m) add(M.innerIndexPtr()[m], m, -1);
+      for (; k < k_end; ++k) add(K.innerIndexPtr()[k], -1, k);
       // A DofMap need not number the free DOFs in order: sort by the free row.
       if (!std::is_sorted(column.begin(), column.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; }))
         std::sort(column.begin(), column.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; });
