@@ -61,6 +61,10 @@ OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& se
   const auto& [r, g, b] = picture_background;
   data_->renderer->SetBackground(r / 255.0, g / 255.0, b / 255.0);
   data_->window->SetOffScreenRendering(settings.on_screen ? 0 : 1);
+  // A window redraws at every step: without multisampling. VTK's default, 8 samples a pixel, is
+  // kept for the PNG frames the book shows; under Mesa's software OpenGL it makes a 960 x 720
+  // frame cost 265 ms instead of 95 (chapter 7's results), for edges a little less jagged.
+  if (settings.on_screen) data_->window->SetMultiSamples(0);
   data_->window->SetSize(settings.width, settings.height);
   data_->window->AddRenderer(data_->renderer);
   show(at_rest, TriangleSurface{});
