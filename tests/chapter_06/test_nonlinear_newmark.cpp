@@ -125,26 +125,39 @@ TEST_CASE("with a clamp moved along the smooth ramp, the energy account's rest s
   CHECK(rest[2] <= 1e-2 * work.back());
 }
 
+// The cut box of the first test case under gravity, with Rayleigh damping and still clamps at
+// z = 0, linear: the system the last two test cases step.
+struct DampedCutBody {
+  cut_body::CutBody body{kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 3}),
+                         {cut_body::plane_surface({0.1, 0, 1}, 0.62, {0.5, 0.5, 0.5}, 0.7)},
+                         material};
+  Eigen::SparseMatrix<double> K = body.stiffness();
+  kerf::NonlinearDynamicSystem system;
+  DampedCutBody() {
+    const std::vector<int> clamped = clamped_body::nodes_at_z0(body.mesh);
+    system.M = kerf::assemble_cut_xfem_mass(body.model, material.density, cut_body::subtets);
+    system.rayleigh_alpha = 0.5;
+    system.rayleigh_beta = 2e-3;
+    system.dofs = kerf::make_cut_xfem_dof_map(body.model, {{clamped, {0, 0, 0}}});
+    const Eigen::VectorXd f = body.model.gravity_load(material.density, {9.81, 0, -3});
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.size());
+    system.load = [f](double) { return f; };
+    system.motion = [zero](double) { return kerf::PrescribedMotion{zero, zero, zero}; };
+    system.internal_force = clamped_body::linear_force(K);
+    system.elastic_energy = [this](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
+  }
+  DampedCutBody(const DampedCutBody&) = delete; // the system's functions read this K
+  DampedCutBody& operator=(const DampedCutBody&) = delete;
+};
+
 TEST_CASE("a step opened and closed by hand balances its account; an open step cannot be booked or closed twice") {
   // Chapter 7 closes each step with the W of the model the next step starts on (open_step, then
   // close_step). Closed with this system's W, the account of a linear body under the average
   // acceleration rule balances to round-off (newmark.hpp's closed form, as in the first test case);
   // a report booked before it is closed, or closed twice, is refused.
-  const cut_body::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 3}),
-                               {cut_body::plane_surface({0.1, 0, 1}, 0.62, {0.5, 0.5, 0.5}, 0.7)}, material);
-  const std::vector<int> clamped = clamped_body::nodes_at_z0(body.mesh);
-  const Eigen::SparseMatrix<double> K = body.stiffness();
-  kerf::NonlinearDynamicSystem system;
-  system.M = kerf::assemble_cut_xfem_mass(body.model, material.density, cut_body::subtets);
-  system.rayleigh_alpha = 0.5;
-  system.rayleigh_beta = 2e-3;
-  system.dofs = kerf::make_cut_xfem_dof_map(body.model, {{clamped, {0, 0, 0}}});
-  const Eigen::VectorXd f = body.model.gravity_load(material.density, {9.81, 0, -3});
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.size());
-  system.load = [f](double) { return f; };
-  system.motion = [zero](double) { return kerf::PrescribedMotion{zero, zero, zero}; };
-  system.internal_force = clamped_body::linear_force(K);
-  system.elastic_energy = [&K](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
+  const DampedCutBody damped;
+  const kerf::NonlinearDynamicSystem& system = damped.system;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(system.M.rows());
 
   kerf::NonlinearNewmarkIntegrator integrator(system, 0.02, {});
   kerf::DynamicState state = integrator.initial_state(zero, zero, 0.0);
@@ -172,21 +185,9 @@ TEST_CASE("the step does not depend on the order in which the DofMap numbers its
   // (nonlinear_newmark.cpp) is then written straight from the merged columns; a DofMap numbered
   // another way takes the path that sorts each column. Both must give the same steps: here the
   // free DOFs numbered backwards, against make_dof_map's, on the linear cut body with damping.
-  const cut_body::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 3}),
-                               {cut_body::plane_surface({0.1, 0, 1}, 0.62, {0.5, 0.5, 0.5}, 0.7)}, material);
-  const std::vector<int> clamped = clamped_body::nodes_at_z0(body.mesh);
-  const Eigen::SparseMatrix<double> K = body.stiffness();
-  kerf::NonlinearDynamicSystem system;
-  system.M = kerf::assemble_cut_xfem_mass(body.model, material.density, cut_body::subtets);
-  system.rayleigh_alpha = 0.5;
-  system.rayleigh_beta = 2e-3;
-  system.dofs = kerf::make_cut_xfem_dof_map(body.model, {{clamped, {0, 0, 0}}});
-  const Eigen::VectorXd f = body.model.gravity_load(material.density, {9.81, 0, -3});
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f.size());
-  system.load = [f](double) { return f; };
-  system.motion = [zero](double) { return kerf::PrescribedMotion{zero, zero, zero}; };
-  system.internal_force = clamped_body::linear_force(K);
-  system.elastic_energy = [&K](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
+  const DampedCutBody damped;
+  const kerf::NonlinearDynamicSystem& system = damped.system;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(system.M.rows());
   kerf::NonlinearDynamicSystem backwards = system;
   for (int& i : backwards.dofs.free_index)
     if (i >= 0) i = system.dofs.num_free - 1 - i;
