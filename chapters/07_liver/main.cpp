@@ -587,8 +587,9 @@ void LiverCut::setup_system() {
     settings.solver.type = "cg-jacobi";
     settings.solver.tolerance = scene_.time.tolerance;
   }
-  // The integrator's start assembles the new model (its energies, and the next step's start):
-  // booked as assembly in timings.csv, so not as the integrator's time here.
+  // The first model's initial state assembles it (booked as assembly in timings.csv, so not as
+  // the integrator's time here); a rebuilt model is assembled at the carried-over state by
+  // apply_cut's energy check or by the step's close (do_timestep).
   const double assembled_before = step_times_.assemble;
   newmark_ = std::make_unique<kerf::NonlinearNewmarkIntegrator>(system_, scene_.time.dt, settings);
   if (state_.u.size() == 0) {
@@ -704,20 +705,23 @@ void LiverCut::do_timestep(int step, bool cut_next, const kerf::BladeEdge* next,
   const auto start = clock::now();
   const double assembled_before_step = step_times_.assemble;
   const double work_before = account_.external_work;
-  kerf::NonlinearStepReport report;
+  const double t_before = state_.t;
   try {
-    report = newmark_->open_step(state_);
+    kerf::NonlinearStepReport report = newmark_->open_step(state_);
     if (!report.converged) ++newton_failures_;
+    step_times_.solve += std::chrono::duration<double>(clock::now() - start).count() - (step_times_.assemble - assembled_before_step);
+    state_.t = step * scene_.time.dt;
+    if (cut_next) cut(next, next_done);
+    // The end's energies by the current model: the new one's if the blade crossed a tet
+    // (apply_cut assembled it there), else one assembly that the next step's start reuses
+    // (assemble_at).
+    newmark_->close_step(report, state_);
+    newmark_->add_step(account_, state_, report);
+  } catch (const kerf::InputError&) {
+    throw; // names its file and field already
   } catch (const std::exception& error) {
-    throw std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(state_.t) + " s): " + error.what());
+    throw std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(t_before) + " s): " + error.what());
   }
-  step_times_.solve += std::chrono::duration<double>(clock::now() - start).count() - (step_times_.assemble - assembled_before_step);
-  state_.t = step * scene_.time.dt;
-  if (cut_next) cut(next, next_done);
-  // W(u_{n+1}) of the current model: the new one's if the blade crossed a tet (apply_cut assembled
-  // it there), else one assembly that the next step's start reuses (assemble_at).
-  kerf::NonlinearNewmarkIntegrator::close_step(report, system_.elastic_energy(state_.u));
-  newmark_->add_step(account_, state_, report);
   energy_scale_ += std::abs(account_.external_work - work_before);
   check_state(step);
 }
@@ -866,6 +870,16 @@ void LiverCut::run() {
     cut(&blade, done);
   }
   output_step(0);
+  const auto add_to_totals = [this] {
+    const double simulated = step_times_.blade + step_times_.topology + step_times_.assemble + step_times_.solve;
+    max_step_seconds_ = std::max(max_step_seconds_, simulated);
+    if (step_times_.topology > 0.0) max_topology_step_seconds_ = std::max(max_topology_step_seconds_, simulated);
+    for (auto [total, part] : {std::pair{&total_times_.blade, step_times_.blade}, {&total_times_.topology, step_times_.topology},
+                               {&total_times_.assemble, step_times_.assemble}, {&total_times_.solve, step_times_.solve},
+                               {&total_times_.render, step_times_.render}, {&total_times_.output, step_times_.output}})
+      *total += part;
+  };
+  if (step_times_.topology > 0.0) add_to_totals(); // the first blade crossed a tet already
 
   start = clock::now();
   auto last_line = start;
@@ -874,13 +888,7 @@ void LiverCut::run() {
     const auto [next, next_done] = blade_at(step + 1);
     do_timestep(step, path_ && step < steps, &next, next_done);
     output_step(step);
-    const double simulated = step_times_.blade + step_times_.topology + step_times_.assemble + step_times_.solve;
-    max_step_seconds_ = std::max(max_step_seconds_, simulated);
-    if (step_times_.topology > 0.0) max_topology_step_seconds_ = std::max(max_topology_step_seconds_, simulated);
-    for (auto [total, part] : {std::pair{&total_times_.blade, step_times_.blade}, {&total_times_.topology, step_times_.topology},
-                               {&total_times_.assemble, step_times_.assemble}, {&total_times_.solve, step_times_.solve},
-                               {&total_times_.render, step_times_.render}, {&total_times_.output, step_times_.output}})
-      *total += part;
+    add_to_totals();
     if (!options_.quiet && (seconds_since(last_line) >= 1.0 || step == steps)) {
       const double rate = step / seconds_since(start);
       std::ostringstream line;

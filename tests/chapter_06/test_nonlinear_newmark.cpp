@@ -151,10 +151,10 @@ struct DampedCutBody {
 };
 
 TEST_CASE("a step opened and closed by hand balances its account; an open step cannot be booked or closed twice") {
-  // Chapter 7 closes each step with the W of the model the next step starts on (open_step, then
-  // close_step). Closed with this system's W, the account of a linear body under the average
-  // acceleration rule balances to round-off (newmark.hpp's closed form, as in the first test case);
-  // a report booked before it is closed, or closed twice, is refused.
+  // Chapter 7 closes each step with the energies of the model the next step starts on (open_step,
+  // then close_step). Closed by the same integrator, the account of a linear body under the
+  // average acceleration rule balances to round-off (newmark.hpp's closed form, as in the first
+  // test case); a report booked before it is closed, or closed twice, is refused.
   const DampedCutBody damped;
   const kerf::NonlinearDynamicSystem& system = damped.system;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(system.M.rows());
@@ -165,18 +165,18 @@ TEST_CASE("a step opened and closed by hand balances its account; an open step c
   double largest = 0.0;
   for (int n = 0; n < 30; ++n) {
     kerf::NonlinearStepReport report = integrator.open_step(state);
-    CHECK(report.awaiting_elastic_end);
+    CHECK(report.awaiting_end_energies);
     CHECK_THROWS_AS(integrator.add_step(account, state, report), std::logic_error);
-    kerf::NonlinearNewmarkIntegrator::close_step(report, system.elastic_energy(state.u));
-    CHECK_FALSE(report.awaiting_elastic_end);
-    CHECK_THROWS_AS(kerf::NonlinearNewmarkIntegrator::close_step(report, 0.0), std::logic_error);
+    integrator.close_step(report, state);
+    CHECK_FALSE(report.awaiting_end_energies);
+    CHECK_THROWS_AS(integrator.close_step(report, state), std::logic_error);
     integrator.add_step(account, state, report);
     largest = std::max(largest, account.kinetic + account.elastic);
   }
   CHECK(largest > 0.0);
   CHECK(account.damping > 1e-3 * largest);
   // The rest of the balance is round-off (~1e-13 of the energies), as in the first test case;
-  // closed without W(u_{n+1}) it would be of the size of the elastic energy itself.
+  // without the end's energies it would be of the size of the energies themselves.
   CHECK(std::abs(account.numerical) <= 1e-10 * largest);
 }
 

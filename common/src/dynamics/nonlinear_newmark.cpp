@@ -168,7 +168,7 @@ EnergyAccount NonlinearNewmarkIntegrator::start_account(const DynamicState& stat
 }
 
 void NonlinearNewmarkIntegrator::add_step(EnergyAccount& account, const DynamicState& state, const NonlinearStepReport& report) const {
-  if (report.awaiting_elastic_end) throw std::logic_error("NonlinearNewmarkIntegrator::add_step: the step is still open (close_step)");
+  if (report.awaiting_end_energies) throw std::logic_error("NonlinearNewmarkIntegrator::add_step: the step is still open (close_step)");
   account.kinetic = 0.5 * state.v.dot(system_.M * state.v);
   account.elastic = elastic_energy(state.u);
   account.external_work += report.energy.external_work;
@@ -260,10 +260,9 @@ NonlinearStepReport NonlinearNewmarkIntegrator::open_step(DynamicState& state) {
   const Eigen::VectorXd r_next = M * next.a + C_v_next + f_int - f_next;
   report.energy.external_work = du.dot(0.5 * (f_start + f_next)) + du.cwiseProduct(prescribed_mask).dot(0.5 * (r_start + r_next));
   report.energy.damping = du.dot(0.5 * (C_v_start + C_v_next));
-  const double kinetic_change = 0.5 * next.v.dot(M * next.v) - 0.5 * state.v.dot(M * state.v);
-  // The balance without W(u_{n+1}), which close_step subtracts.
-  report.energy.numerical = report.energy.external_work - report.energy.damping - kinetic_change + elastic_energy(state.u);
-  report.awaiting_elastic_end = true;
+  // The balance without the end state's kinetic and strain energies, which close_step subtracts.
+  report.energy.numerical = report.energy.external_work - report.energy.damping + 0.5 * state.v.dot(M * state.v) + elastic_energy(state.u);
+  report.awaiting_end_energies = true;
   last_change_ = P_ * (next.a - state.a);
   state = std::move(next);
   return report;
@@ -271,14 +270,14 @@ NonlinearStepReport NonlinearNewmarkIntegrator::open_step(DynamicState& state) {
 
 NonlinearStepReport NonlinearNewmarkIntegrator::step(DynamicState& state) {
   NonlinearStepReport report = open_step(state);
-  close_step(report, elastic_energy(state.u));
+  close_step(report, state);
   return report;
 }
 
-void NonlinearNewmarkIntegrator::close_step(NonlinearStepReport& report, double elastic_end) {
-  if (!report.awaiting_elastic_end) throw std::logic_error("NonlinearNewmarkIntegrator::close_step: the step is not open");
-  report.energy.numerical -= elastic_end;
-  report.awaiting_elastic_end = false;
+void NonlinearNewmarkIntegrator::close_step(NonlinearStepReport& report, const DynamicState& end) const {
+  if (!report.awaiting_end_energies) throw std::logic_error("NonlinearNewmarkIntegrator::close_step: the step is not open");
+  report.energy.numerical -= 0.5 * end.v.dot(system_.M * end.v) + elastic_energy(end.u);
+  report.awaiting_end_energies = false;
 }
 
 } // namespace kerf

@@ -74,8 +74,9 @@ struct NonlinearStepReport {
   /// building the solves' matrices A_ff, and factorising and solving: the benchmark's phases.
   double matrix_seconds = 0.0;
   double solve_seconds = 0.0;
-  /// open_step's report: `energy.numerical` still lacks -W(u_{n+1}), which close_step subtracts.
-  bool awaiting_elastic_end = false;
+  /// open_step's report: `energy.numerical` still lacks the end state's kinetic and strain
+  /// energies, which close_step subtracts.
+  bool awaiting_end_energies = false;
 };
 
 /// Newmark in acceleration form (as newmark.hpp) on all DOFs: the free ones predicted and
@@ -107,17 +108,20 @@ public:
   DynamicState initial_state(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, double t0);
   /// The energy account at the start of a run: kinetic 1/2 v^T M v, elastic W(u).
   EnergyAccount start_account(const DynamicState& state) const;
-  /// Advances `state` to t + dt: open_step, then close_step with W(u_{n+1}) of this system.
+  /// Advances `state` to t + dt: open_step, then close_step on this integrator.
   NonlinearStepReport step(DynamicState& state);
-  /// step() but for the strain energy at its end, which the caller gives close_step. For a run
-  /// whose model changes between steps (chapter 7: the blade cuts the body as this step leaves
-  /// it, before the next step): the new model assembles at u_{n+1} for the next step's start
-  /// anyway, and the field, hence W, is the same in both models (cut_state_transfer.hpp), so its
-  /// W closes this step and the old model need not assemble there too.
+  /// step() with its energy balance left open at the end state's energies. For a run whose
+  /// model changes between steps (chapter 7: the blade cuts the body as this step leaves it,
+  /// before the next step), which closes the step with the integrator of the new model: its
+  /// kinetic energy and W at the carried-over state. The new model assembles there for the next
+  /// step's start anyway, so the old one need not assemble at u_{n+1} too. Where the new model
+  /// holds the same field (cut_state_transfer.hpp) the energies are the old ones to round-off;
+  /// where it does not (a fit near a crack front) their change shows in the step's numerical rest.
   NonlinearStepReport open_step(DynamicState& state);
-  /// Completes open_step's energy balance with W(u_{n+1}) (J).
+  /// Completes open_step's energy balance with the kinetic energy 1/2 v^T M v and W(u) of `end`,
+  /// the state the step ended in, as this integrator's system measures them.
   /// @throws std::logic_error if the report is not open_step's, or was closed already
-  static void close_step(NonlinearStepReport& report, double elastic_end);
+  void close_step(NonlinearStepReport& report, const DynamicState& end) const;
   /// Books a step in the account: the state's energies, the step's works.
   /// @throws std::logic_error if the report is still open (open_step without close_step)
   void add_step(EnergyAccount& account, const DynamicState& state, const NonlinearStepReport& report) const;
