@@ -181,10 +181,10 @@ TEST_CASE("a step opened and closed by hand balances its account; an open step c
 }
 
 TEST_CASE("the step does not depend on the order in which the DofMap numbers its free DOFs") {
-  // make_dof_map numbers the free DOFs in the order of the DOFs, and the step matrix's pattern
-  // (nonlinear_newmark.cpp) is then written straight from the merged columns; a DofMap numbered
-  // another way takes the path that sorts each column. Both must give the same steps: here the
-  // free DOFs numbered backwards, against make_dof_map's, on the linear cut body with damping.
+  // make_dof_map numbers the free DOFs in the order of the DOFs, so the step matrix's merged
+  // columns (nonlinear_newmark.cpp) come out sorted; a DofMap numbered another way needs each
+  // column sorted. Both must give the same steps: here the free DOFs numbered backwards, against
+  // make_dof_map's, on the linear cut body with damping.
   const DampedCutBody damped;
   const kerf::NonlinearDynamicSystem& system = damped.system;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(system.M.rows());

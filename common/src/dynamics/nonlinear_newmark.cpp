@@ -56,15 +56,8 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
       int row;
       Eigen::Index from_M, from_K;
     };
-    // make_dof_map numbers the free DOFs in the order of the DOFs: then a merged column comes out
-    // sorted by free row, and is written straight into the arrays (reserved for the most entries
-    // the merge can give, so that they are not copied as they grow).
-    bool in_order = true;
-    for (int i = 0, last = -1; i < static_cast<int>(index.size()); ++i)
-      if (index[static_cast<std::size_t>(i)] >= 0) {
-        in_order = in_order && index[static_cast<std::size_t>(i)] > last;
-        last = index[static_cast<std::size_t>(i)];
-      }
+    // The arrays reserved for the most entries the merge can give, so that they are not copied
+    // as they grow.
     std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
     std::vector<Eigen::Index> from_M, from_K;
     const auto most = static_cast<std::size_t>(M.nonZeros() + K.nonZeros());
@@ -79,15 +72,7 @@ const Eigen::SparseMatrix<double>& NonlinearNewmarkIntegrator::step_matrix(doubl
       Eigen::Index m = M.outerIndexPtr()[j], k = K.outerIndexPtr()[j];
       const Eigen::Index m_end = M.outerIndexPtr()[j + 1], k_end = K.outerIndexPtr()[j + 1];
       const auto add = [&](Eigen::Index row, Eigen::Index in_M, Eigen::Index in_K) {
-        const int free_row = index[static_cast<std::size_t>(row)];
-        if (free_row < 0) return;
-        if (!in_order) {
-          column.push_back({free_row, in_M, in_K});
-          return;
-        }
-        inner.push_back(free_row);
-        from_M.push_back(in_M);
-        from_K.push_back(in_K);
+        if (const int free_row = index[static_cast<std::size_t>(row)]; free_row >= 0) column.push_back({free_row, in_M, in_K});
       };
       // Both columns are sorted by row: merge them while both have entries, then the rest of
       // the longer one (a lumped M has one entry per column, so this is most of K's column).
