@@ -18,7 +18,9 @@ struct PolarDecomposition {
 
 /// Higham's scaled Newton iteration for the orthogonal polar factor (Higham 1986, the method
 /// Schoch et al. cite for eq. 31): X_{k+1} = (g X_k + X_k^{-T} / g) / 2 with the Frobenius
-/// scaling g = sqrt(|X_k^{-1}|_F / |X_k|_F), from X_0 = F, until |X_{k+1} - X_k|_F <= tolerance.
+/// scaling g = sqrt(|X_k^{-1}|_F / |X_k|_F), from X_0 = F, until |X_{k+1} - X_k|_F <= tolerance,
+/// or until the quadratic convergence guarantees X_{k+1} is that close: |X_{k+1} - X_k|_F^2 <=
+/// tolerance / 100 (the step after it would change X by less than tolerance / 200).
 ///
 /// It converges quadratically to the orthogonal factor of F whenever F is invertible; but that
 /// factor has det = sign(det F): for an inverted element (det F < 0) it is a reflection, not a
