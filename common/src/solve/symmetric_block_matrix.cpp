@@ -13,41 +13,48 @@ void SymmetricBlockMatrix::analyze_pattern(const Eigen::SparseMatrix<double>& A)
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
 
-  // The block columns J >= I of every block row I: an upper entry (i, j), i <= j, lies in block
-  // (i / 3, j / 3). Column j's entries are visited in order, so block row I gets its J in
-  // increasing order; a block is listed once however many of its 9 entries are stored.
-  std::vector<std::vector<int>> columns_of_row(static_cast<std::size_t>(blocks));
-  for (Eigen::Index I = 0; I < blocks; ++I) columns_of_row[static_cast<std::size_t>(I)].push_back(static_cast<int>(I));
+  // Two passes over A's upper entries (i, j), i <= j, each in block (I, J) = (i / 3, j / 3).
+  // Columns come in increasing order, so a block row I meets its block columns J in increasing
+  // order too: a block is new to row I when J differs from the last J the row met. Every row
+  // starts with its diagonal block, so the row's J starts at I.
+  std::vector<int> last_column(static_cast<std::size_t>(blocks));
+  for (Eigen::Index I = 0; I < blocks; ++I) last_column[static_cast<std::size_t>(I)] = static_cast<int>(I);
+  // First pass: how many blocks each row has.
+  row_start_.assign(static_cast<std::size_t>(blocks) + 1, 0);
+  for (Eigen::Index I = 0; I < blocks; ++I) row_start_[static_cast<std::size_t>(I) + 1] = 1;
   for (Eigen::Index j = 0; j < size_; ++j) {
     const int J = static_cast<int>(j / 3);
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
       if (inner[k] > j) continue;
-      std::vector<int>& row = columns_of_row[static_cast<std::size_t>(inner[k] / 3)];
-      if (row.back() != J) row.push_back(J);
+      int& last = last_column[static_cast<std::size_t>(inner[k] / 3)];
+      if (last != J) {
+        last = J;
+        ++row_start_[static_cast<std::size_t>(inner[k] / 3) + 1];
+      }
     }
   }
-  row_start_.assign(static_cast<std::size_t>(blocks) + 1, 0);
-  block_column_.clear();
-  for (Eigen::Index I = 0; I < blocks; ++I) {
-    const std::vector<int>& row = columns_of_row[static_cast<std::size_t>(I)];
-    block_column_.insert(block_column_.end(), row.begin(), row.end());
-    row_start_[static_cast<std::size_t>(I) + 1] = static_cast<int>(block_column_.size());
-  }
+  for (Eigen::Index I = 0; I < blocks; ++I) row_start_[static_cast<std::size_t>(I) + 1] += row_start_[static_cast<std::size_t>(I)];
+  block_column_.assign(static_cast<std::size_t>(row_start_.back()), 0);
   values_.assign(9 * block_column_.size(), 0.0);
 
-  // Where each stored entry goes: entry (p, q) of block b at 9 b + 3 p + q.
+  // Second pass: the blocks' columns, and where each stored entry goes: entry (p, q) of block b
+  // at 9 b + 3 p + q. `current` is the block row I is filling (its diagonal block first).
+  std::vector<int> current(static_cast<std::size_t>(blocks));
+  for (Eigen::Index I = 0; I < blocks; ++I) {
+    const auto row = static_cast<std::size_t>(I);
+    current[row] = row_start_[row];
+    block_column_[static_cast<std::size_t>(row_start_[row])] = static_cast<int>(I);
+  }
   target_.assign(static_cast<std::size_t>(A.nonZeros()), -1);
   for (Eigen::Index j = 0; j < size_; ++j) {
     const int J = static_cast<int>(j / 3);
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
       const int i = inner[k];
       if (i > j) continue;
-      const int I = i / 3;
-      const auto first = block_column_.begin() + row_start_[static_cast<std::size_t>(I)];
-      const auto last = block_column_.begin() + row_start_[static_cast<std::size_t>(I) + 1];
-      const auto block = static_cast<int>(std::lower_bound(first + 1, last, J) - block_column_.begin());
-      const int b = J == I ? row_start_[static_cast<std::size_t>(I)] : block;
-      target_[static_cast<std::size_t>(k)] = 9 * b + 3 * (i % 3) + static_cast<int>(j % 3);
+      const auto row = static_cast<std::size_t>(i / 3);
+      int& block = current[row];
+      if (block_column_[static_cast<std::size_t>(block)] != J) block_column_[static_cast<std::size_t>(++block)] = J;
+      target_[static_cast<std::size_t>(k)] = 9 * block + 3 * (i % 3) + static_cast<int>(j % 3);
     }
   }
   pattern_outer_.assign(outer, outer + size_ + 1);
