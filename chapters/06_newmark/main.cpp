@@ -444,7 +444,7 @@ void CutDynamics::run() {
   std::filesystem::create_directories(options_.out_dir);
   energy_csv_.open(options_.out_dir / "energy.csv");
   if (!energy_csv_) throw kerf::InputError((options_.out_dir / "energy.csv").string(), "write", "cannot open the file");
-  energy_csv_ << "step,t,kinetic,elastic,external_work,dissipated\n";
+  energy_csv_ << kerf::energy_csv_header;
   if (options_.probes_history) {
     probe_points_ = kerf::read_probes_csv(*options_.probes_in);
     history_csv_.open(*options_.probes_history);
@@ -474,7 +474,10 @@ void CutDynamics::run() {
   line << "stepped " << steps << " steps in " << seconds_since(start) << " s";
   if (total_iterations_ > 0) line << ", " << total_iterations_ << " linear solves";
   line << "; energy: kinetic " << account_.kinetic << " J, elastic " << account_.elastic << " J, work " << account_.external_work
-       << " J, dissipated " << account_.dissipated() << " J";
+       << " J, dissipated " << account_.dissipated() << " J = damping " << account_.damping << " J + numerical ";
+  // A closed form of the scheme on the linear path; what closes the balance for HHT-alpha and the nonlinear step.
+  if (nonlinear_newmark_ || scene_.time.integrator == "hht_alpha") line << "(the rest of the balance) ";
+  line << account_.numerical << " J";
   report(line.str());
   if (newton_failures_ > 0)
     std::cerr << "warning: " << scene_.source.string() << ": time.tolerance: the Newton iteration missed " << scene_.time.tolerance

@@ -844,7 +844,7 @@ void LiverCut::run() {
     if (!file) throw kerf::InputError(path.string(), "write", "cannot open the file");
     file << header;
   };
-  open(energy_csv_, options_.out_dir / "energy.csv", "step,t,kinetic,elastic,external_work,dissipated\n");
+  open(energy_csv_, options_.out_dir / "energy.csv", kerf::energy_csv_header);
   open(cuts_csv_, options_.out_dir / "cuts.csv",
        "change,t,crossed_tets,enrichments,unknowns,volume_error,mass_error,kinetic_before,kinetic_after,elastic_before,elastic_after\n");
   open(rebuilds_csv_, options_.out_dir / "rebuilds.csv", "change,pieces_s,enrichment_s,model_s,transfer_s,mass_s,loads_s,pattern_s,integrator_s\n");
@@ -914,7 +914,8 @@ void LiverCut::run() {
   cut << "cut: " << crossing_->crossed_tets().size() << " tets crossed, " << topology_changes_ << " topology changes, "
       << sheets_.size() << " sheets of " << (sheets_.empty() ? 0 : sheets_.back().num_triangles()) << " triangles, "
       << enrichment().num_enrichments() << " enrichments; energy: kinetic " << account_.kinetic << " J, elastic " << account_.elastic
-      << " J, work " << account_.external_work << " J, dissipated " << account_.dissipated() << " J";
+      << " J, work " << account_.external_work << " J, dissipated " << account_.dissipated() << " J = damping " << account_.damping
+      << " J + numerical (the rest of the balance) " << account_.numerical << " J";
   report(cut.str());
   if (newton_failures_ > 0)
     std::cerr << "warning: " << scene_.source.string() << ": time.tolerance: the Newton iteration missed " << scene_.time.tolerance << " in "

@@ -68,7 +68,7 @@ TEST_CASE("a short corotational run writes energy.csv, the probes' history, the 
 
   std::string header;
   const auto energy = kerf_test::read_csv_rows(dir / "out" / "energy.csv", header);
-  CHECK(header == "step,t,kinetic,elastic,external_work,dissipated");
+  CHECK(header == "step,t,kinetic,elastic,external_work,dissipated,damping,numerical");
   REQUIRE(energy.size() == 13); // steps 0 .. 12
   for (std::size_t n = 0; n < energy.size(); ++n) {
     CHECK(energy[n][0] == static_cast<double>(n));

@@ -206,23 +206,56 @@ TEST_CASE("nothing is lost over a long scripted cut: 10 s, three passes, every t
   }
 
   // The energy account: finite at every step, and kinetic + elastic never above the work of
-  // gravity (the run starts at rest and unstressed, so the initial energy is 0; damping and the
-  // frozen-rotation step only take energy out). Measured: (kinetic + elastic) / work at most 0.92.
+  // gravity. On this path (nonlinear_newmark.hpp) the balance closes by definition: the numerical
+  // column is its rest, so kinetic + elastic = work - damping - numerical (the run starts at rest
+  // and unstressed), and with damping >= 0 "stored <= work" fails only if the integrator puts in
+  // more than damping takes out. Measured: (kinetic + elastic) / work at most 0.92. The rest itself
+  // is bounded below; dissipated = damping + numerical, each read back exactly.
   const auto energy = kerf_test::read_csv_rows(dir / "long" / "energy.csv", header);
-  CHECK(header == "step,t,kinetic,elastic,external_work,dissipated");
+  CHECK(header == "step,t,kinetic,elastic,external_work,dissipated,damping,numerical");
   REQUIRE(energy.size() == 1001);
   CHECK(energy.back()[1] == doctest::Approx(10.0).epsilon(1e-12));
-  double largest_ratio = 0.0;
-  for (const auto& row : energy) {
+  enum : std::size_t { kinetic = 2, elastic, work_done, dissipated, damping, numerical };
+  std::vector<double> change_times;
+  for (const auto& row : cuts) change_times.push_back(row[column::t]);
+  const auto at_change = [&](double t) {
+    return std::any_of(change_times.begin(), change_times.end(), [t](double c) { return std::abs(c - t) < 1e-9; });
+  };
+  double largest_ratio = 0.0, largest_rest = 0.0, largest_step_rest = 0.0, largest_change_rest = 0.0;
+  for (std::size_t n = 0; n < energy.size(); ++n) {
+    const auto& row = energy[n];
     INFO("step ", row[0]);
-    REQUIRE(row.size() == 6);
+    REQUIRE(row.size() == 8);
     CHECK(std::all_of(row.begin(), row.end(), [](double x) { return std::isfinite(x); }));
-    const double stored = row[2] + row[3], work = row[4];
+    const double stored = row[kinetic] + row[elastic], work = row[work_done];
     CHECK(stored <= work);
     if (work > 0.0) largest_ratio = std::max(largest_ratio, stored / work);
+    CHECK(row[dissipated] == row[damping] + row[numerical]);
+    largest_rest = std::max(largest_rest, std::abs(row[numerical]));
+    if (n == 0) continue;
+    // Each step's damping is dt v_bar^T C v_bar >= 0 (still clamps, C = 2 M + 0.01 K_R).
+    CHECK(row[damping] >= energy[n - 1][damping] - 1e-14 * work);
+    const double step_rest = std::abs(row[numerical] - energy[n - 1][numerical]);
+    if (at_change(row[1])) largest_change_rest = std::max(largest_change_rest, step_rest);
+    else largest_step_rest = std::max(largest_step_rest, step_rest);
   }
+  const double total_work = energy.back()[work_done];
   MESSAGE("topology changes: " << cuts.size() << ", tets crossed: " << cuts.back()[column::crossed_tets]
-                               << ", largest (kinetic + elastic) / work: " << largest_ratio);
+                               << ", largest (kinetic + elastic) / work: " << largest_ratio << "; damping " << energy.back()[damping]
+                               << " J, numerical rest " << energy.back()[numerical] << " J (largest |rest| " << largest_rest
+                               << " J) of a work of " << total_work << " J; largest |rest| of one step " << largest_step_rest
+                               << " J, of a step with a topology change " << largest_change_rest << " J");
+  // The rest is the frozen step's error with the average acceleration rule's on the corotated
+  // force, first order in dt: on this liver sagging before the blade enters (0.5 s, CHOLMOD) it is
+  // 6.1, 3.7 and 2.0 mJ at dt = 10, 5 and 2.5 ms, Newton's 3.7 and 0.95 mJ; CG's tolerance 1e-3
+  // moves it by 0.4 %. Measured here: 9.8 mJ, 3.0 % of the work, at the end (its largest). A tenth
+  // of the work leaves a factor of three.
+  CHECK(largest_rest <= 0.1 * total_work);
+  // A change of topology carries the state (cuts.csv: the energies to round-off), so the step
+  // that makes it leaves no more rest than an ordinary step. Measured: at most 2.2e-5 J at a
+  // change, 4.4e-4 J at the other steps (the largest in the first swing under sudden gravity); a
+  // transfer that made or lost 0.3 % of the elastic energy (0.16 J at the end) would fail this.
+  CHECK(largest_change_rest <= largest_step_rest);
 
   // timings.csv: a row per step from 0, the topology flag set on exactly the steps of cuts.csv.
   const auto timings = kerf_test::read_csv_rows(dir / "long" / "timings.csv", header);

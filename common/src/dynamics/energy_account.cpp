@@ -36,9 +36,9 @@ void check_bounded_state(const DynamicState& state, const EnergyAccount& account
 }
 
 void write_energy_row(std::ostream& out, int step, double t, const EnergyAccount& account) {
-  char row[256];
-  std::snprintf(row, sizeof row, "%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, t, account.kinetic, account.elastic, account.external_work,
-                account.dissipated());
+  char row[320];
+  std::snprintf(row, sizeof row, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, t, account.kinetic, account.elastic,
+                account.external_work, account.dissipated(), account.damping, account.numerical);
   out << row;
 }
 

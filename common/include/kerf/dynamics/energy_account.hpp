@@ -9,27 +9,53 @@
 namespace kerf {
 
 /// Where the energy of a run went, in J, kept step by step (the columns of a chapter's
-/// energy.csv: kinetic, elastic, external_work, dissipated).
+/// energy.csv: kinetic, elastic, external_work, dissipated, damping, numerical).
 ///
 /// The balance: kinetic + elastic + dissipated() - external_work stays at its value at the start
-/// (the initial kinetic plus elastic energy), to round-off, for every integrator of this area.
-/// For Newmark, the central difference and backward Euler that is a check: each reports the
-/// dissipation of its own scheme in closed form (StepEnergy), not as whatever is left over, so a
-/// wrong formula, or a step that does not satisfy its own equations, shows up as a drift of the
-/// balance. HHT-alpha books the rest of the balance as numerical (hht_alpha.hpp says why).
+/// (the initial kinetic plus elastic energy). Whether that is a check or an identity depends on
+/// how the integrator gets `numerical`. Every integrator measures kinetic and elastic from the
+/// state and computes external_work and damping from the step's own vectors; per integrator:
+///
+/// - Newmark (newmark.hpp): damping Delta u^T C v_bar; numerical the closed form
+///   dt^2 (beta - gamma/2) [a]^T M a_bar - dt (gamma - 1/2) v_bar^T M [a] (zero for the average
+///   acceleration rule).
+/// - the central difference (Newmark with beta = 0, gamma = 1/2): the same two, numerical
+///   -dt^2/4 [a]^T M a_bar.
+/// - backward Euler (backward_euler.hpp): damping Delta u^T C v_{n+1}; numerical the closed form
+///   Delta v^T M Delta v / 2 + Delta u^T K Delta u / 2 - Delta u . [f] / 2.
+/// - HHT-alpha (hht_alpha.hpp): damping Delta u^T C v_bar; numerical the rest of the balance, by
+///   construction.
+/// - nonlinear Newmark (nonlinear_newmark.hpp: the corotated body, clamps that move): damping
+///   Delta u^T C v_bar with the step's C; numerical the rest of the balance, by construction.
+///
+/// For the three closed forms the balance is a check: a wrong formula, or a step that does not
+/// satisfy its own equations, shows up as a drift of the balance (to round-off otherwise). For
+/// HHT-alpha and the nonlinear step the balance holds by definition and proves nothing; there
+/// `numerical` is what to read: whatever the step did to the energy that neither the work nor the
+/// damping accounts for. On the nonlinear path that is the frozen-rotation step's error (O(dt)
+/// over a fixed time; negative when the step puts energy in), a moving clamp's motion that does not
+/// follow Newmark's updates, an iterative solve's tolerance, and (chapter 7) the change of the
+/// energies when a new model takes over the state. Damping is computed on its own in every
+/// scheme, so the damping column is the dissipation of C, and the numerical column the rest.
 ///
 /// The prescribed DOFs are held still (LinearDynamicSystem), so their reactions do no work and
 /// external_work is the work of the load f alone; a prescribed motion would add the trapezoidal
-/// work of the reactions, (u_c,n+1 - u_c,n) . (r_n + r_{n+1}) / 2.
+/// work of the reactions, (u_c,n+1 - u_c,n) . (r_n + r_{n+1}) / 2 (nonlinear_newmark.hpp does).
 struct EnergyAccount {
   double kinetic = 0.0;        ///< (1/2) v^T M v now
-  double elastic = 0.0;        ///< (1/2) u^T K u now
-  double external_work = 0.0;  ///< trapezoidal work of the loads since the start
-  double damping = 0.0;        ///< work of the damping forces since the start (>= 0)
-  double numerical = 0.0;      ///< energy the integrator removed since the start
+  double elastic = 0.0;        ///< (1/2) u^T K u (or the corotated W(u)) now
+  double external_work = 0.0;  ///< trapezoidal work of the loads (and a moving clamp's reactions) since the start
+  /// Work of the damping forces since the start, by the step's rule (above); for the average
+  /// acceleration rule and still clamps Delta u = dt v_bar, so each step adds dt v_bar^T C v_bar >= 0.
+  double damping = 0.0;
+  /// Energy the integrator removed since the start (negative: put in). A closed form of the
+  /// scheme for Newmark, the central difference and backward Euler; for HHT-alpha and the
+  /// nonlinear step the rest of the balance, external_work - damping - change of kinetic + elastic.
+  double numerical = 0.0;
   /// damping + numerical.
   double dissipated() const { return damping + numerical; }
-  /// kinetic + elastic + dissipated() - external_work: constant along a run.
+  /// kinetic + elastic + dissipated() - external_work: constant along a run (a check only where
+  /// `numerical` is a closed form, see above).
   double balance() const { return kinetic + elastic + dissipated() - external_work; }
 };
 
@@ -46,7 +72,12 @@ void add_step(EnergyAccount& account, const LinearDynamicSystem& system, const D
 /// @throws std::runtime_error `the run diverged at step N (t = T s): ...` naming the step
 void check_bounded_state(const DynamicState& state, const EnergyAccount& account, double energy_scale, int step);
 
-/// energy.csv's row for a step: `step,t,kinetic,elastic,external_work,dissipated`, full precision.
+/// energy.csv's header line, with its newline: the columns of write_energy_row. The first six are
+/// those of earlier versions; damping and numerical, whose sum is dissipated, came after them.
+inline constexpr const char* energy_csv_header = "step,t,kinetic,elastic,external_work,dissipated,damping,numerical\n";
+
+/// energy.csv's row for a step: `step,t,kinetic,elastic,external_work,dissipated,damping,numerical`,
+/// full precision.
 void write_energy_row(std::ostream& out, int step, double t, const EnergyAccount& account);
 
 } // namespace kerf
