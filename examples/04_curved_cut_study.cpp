@@ -244,7 +244,7 @@ Run run_xfem(const std::string& cut, const kerf::TriangleSurface& surface, const
   run.enrichments = static_cast<int>(enrichment.num_enrichments());
   run.smallest_fraction = 1.0;
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    if (!model.split(t)) continue;
+    if (!model.integrated_by_pieces(t)) continue;
     ++run.split_tets;
     const kerf::TetPieces& tp = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
     for (const kerf::TetPiece& piece : tp.pieces) run.smallest_fraction = std::min(run.smallest_fraction, piece.volume / tp.volume);

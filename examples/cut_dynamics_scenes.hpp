@@ -118,10 +118,10 @@ struct CutDynamicBody {
     Eigen::Vector3d moment = Eigen::Vector3d::Zero();
     double volume = 0.0;
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-      const int count = model.split(t) ? pieces.num_pieces(t) : 1;
+      const int count = model.num_integrated_pieces(t);
       for (int p = 0; p < count; ++p) {
         kerf::PieceQuadratureRule rule;
-        if (model.split(t)) {
+        if (model.integrated_by_pieces(t)) {
           rule = kerf::subtet_rule(pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])], p, 1);
         } else {
           rule.points = {kerf::tet_corners(mesh, t).colwise().mean().transpose()};
@@ -131,7 +131,7 @@ struct CutDynamicBody {
         Eigen::Vector3d x_mean = Eigen::Vector3d::Zero();
         for (std::size_t q = 0; q < rule.points.size(); ++q) w_total += rule.weights[q], x_mean += rule.weights[q] * rule.points[q];
         if (!side(Eigen::Vector3d(x_mean / w_total))) continue;
-        const Eigen::MatrixX3d U = model.phantom_displacements(u, t, model.split(t) ? p : 0);
+        const Eigen::MatrixX3d U = model.phantom_displacements(u, t, model.integrated_by_pieces(t) ? p : 0);
         for (std::size_t q = 0; q < rule.points.size(); ++q) {
           const Eigen::VectorXd N = model.shape_values(t, rule.points[q]);
           moment += rule.weights[q] * (rule.points[q] + U.transpose() * N);
@@ -151,7 +151,7 @@ struct CutDynamicBody {
     double volume = 0.0;
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
       const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(mesh, t);
-      if (!model.split(t)) {
+      if (!model.integrated_by_pieces(t)) {
         const double V = tet_volume(mesh, t);
         moment += V * (X.colwise().mean().transpose() + model.phantom_displacements(u, t, 0).colwise().mean().transpose());
         volume += V;
@@ -247,7 +247,7 @@ template <class Side> double model_volume(const CutDynamicBody& body, Side side,
   double volume = 0.0;
   for (Eigen::Index t = 0; t < body.mesh.num_tets(); ++t) {
     const double V = tet_volume(body.mesh, t);
-    if (!body.model.split(t)) {
+    if (!body.model.integrated_by_pieces(t)) {
       if (side(Eigen::Vector3d(kerf::tet_corners(body.mesh, t).colwise().mean().transpose()))) volume += V;
       continue;
     }

@@ -45,6 +45,7 @@
 #include "kerf/dynamics/linear_dynamic_system.hpp"
 #include "kerf/dynamics/newmark.hpp"
 #include "kerf/dynamics/nonlinear_newmark.hpp"
+#include "kerf/dynamics/part_basis.hpp"
 #include "kerf/dynamics/rayleigh_damping.hpp"
 #include "kerf/io/probes_csv.hpp"
 #include "kerf/io/write_vtu.hpp"
@@ -308,6 +309,9 @@ void CutDynamics::setup_nonlinear_integrator() {
   nonlinear_.rayleigh_alpha = time.rayleigh[0];
   nonlinear_.rayleigh_beta = time.rayleigh[1];
   nonlinear_.dofs = dofs_;
+  // CG's Jacobi scaling in the part basis (part_basis.hpp): a piece the cut freed is never
+  // moved by the corrections of the body, and a thin part never shares a scale with a thick one.
+  nonlinear_.solver_basis = kerf::cut_body_preconditioner_basis(*model_, dofs_);
   nonlinear_.load = [f = f_ext_](double) { return f; };
   nonlinear_.motion = [this](double t) { return kerf::scene_prescribed_motion(scene_, mesh_, model_->num_dof_nodes(), t); };
   if (corotated) {

@@ -49,6 +49,7 @@
 #include "kerf/cut/semi_progressive_cut.hpp"
 #include "kerf/dynamics/energy_account.hpp"
 #include "kerf/dynamics/nonlinear_newmark.hpp"
+#include "kerf/dynamics/part_basis.hpp"
 #include "kerf/io/animated_png.hpp"
 #include "kerf/io/probes_csv.hpp"
 #include "kerf/io/write_vtu.hpp"
@@ -490,7 +491,7 @@ void LiverCut::apply_cut() {
     const auto start = std::chrono::steady_clock::now();
     double volume = 0.0;
     for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t)
-      for (int p = 0; p < (model_->split(t) ? pieces_->num_pieces(t) : 1); ++p) volume += model_->integrated_volume(t, p);
+      for (int p = 0; p < model_->num_integrated_pieces(t); ++p) volume += model_->integrated_volume(t, p);
     char row[512];
     std::snprintf(row, sizeof row, "%d,%.17g,%d,%ld,%ld,%.6e,%.6e,%.17g,%.17g,%.17g,%.17g\n", topology_changes_ + 1, state_.t,
                   static_cast<int>(crossing_->crossed_tets().size()), static_cast<long>(this->enrichment().num_enrichments()),
@@ -544,6 +545,9 @@ void LiverCut::setup_system() {
   system_.rayleigh_alpha = scene_.time.rayleigh[0];
   system_.rayleigh_beta = scene_.time.rayleigh[1];
   system_.dofs = dofs_;
+  // CG's Jacobi scaling in the part basis, as chapter 6's: a freed piece is never moved by the
+  // corrections of the body (part_basis.hpp).
+  system_.solver_basis = kerf::cut_body_preconditioner_basis(*model_, dofs_);
   system_.load = [f](double) { return f; };
   const Eigen::Index n = 3 * model_->num_dof_nodes();
   system_.motion = [n](double) {

@@ -40,7 +40,7 @@ TEST_CASE("the Tet10 XFEM mass gives each part of a cut body its mass and first 
     const Eigen::Index N = mesh.num_nodes();
     for (int pass = 0; pass < 2; ++pass)
       for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
-        for (int p = 0; p < (model.split(t) ? pieces.num_pieces(t) : 1); ++p) {
+        for (int p = 0; p < model.num_integrated_pieces(t); ++p) {
           const Eigen::Vector3d y = point_in_piece(mesh, pieces, t, p);
           const bool is_above = ridge_cut::side_of(y) > 0;
           for (int a = 0; a < 10; ++a) {

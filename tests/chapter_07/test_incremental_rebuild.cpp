@@ -210,13 +210,13 @@ Kept grow_and_compare(const kerf::TetMesh& mesh, double y, double wiggle, bool t
     stage->grown = before ? std::make_unique<kerf::CutXfemModel>(*before->grown, stage->pieces, *sign, stage->functions.get())
                           : std::make_unique<kerf::CutXfemModel>(mesh, tissue, stage->pieces, *sign, support::subtets, stage->functions.get());
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
-      if (before && stage->pieces.kept_from_previous[static_cast<std::size_t>(t)] && stage->grown->split(t) &&
-          before->grown->split(t) && !stage->grown->has_branch_functions(t) && !before->grown->has_branch_functions(t))
+      if (before && stage->pieces.kept_from_previous[static_cast<std::size_t>(t)] && stage->grown->integrated_by_pieces(t) &&
+          before->grown->integrated_by_pieces(t) && !stage->grown->has_branch_functions(t) && !before->grown->has_branch_functions(t))
         ++kept_split_tets;
     check_same_model(mesh, *stage->scratch, *stage->grown, assembler.get(), assembler, rng, !tips);
     // The tets whose pieces SplitTetMasses integrates by the rule, and those of them it can copy.
     const auto has_rule_masses = [&](const Stage& s, Eigen::Index t) {
-      return s.grown->split(t) && s.pieces.num_pieces(t) > 1 && !s.grown->has_branch_functions(t);
+      return s.grown->integrated_by_pieces(t) && s.pieces.num_pieces(t) > 1 && !s.grown->has_branch_functions(t);
     };
     for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
       if (!has_rule_masses(*stage, t)) continue;

@@ -47,7 +47,7 @@ struct CutBody : support::CutBody {
 
   // A point inside piece p of tet t: its centroid (by a degree-1 rule), or the tet's.
   Eigen::Vector3d piece_centroid(Eigen::Index t, int p) const {
-    if (!model.split(t)) return kerf::tet_corners(mesh, t).colwise().mean().transpose();
+    if (!model.integrated_by_pieces(t)) return kerf::tet_corners(mesh, t).colwise().mean().transpose();
     const kerf::TetPieces& tp = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
     const kerf::PieceQuadratureRule r = kerf::subtet_rule(tp, p, 1);
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -55,7 +55,7 @@ struct CutBody : support::CutBody {
     for (std::size_t q = 0; q < r.points.size(); ++q) x += r.weights[q] * r.points[q], w += r.weights[q];
     return x / w;
   }
-  int num_integrated_pieces(Eigen::Index t) const { return model.split(t) ? pieces.num_pieces(t) : 1; }
+  int num_integrated_pieces(Eigen::Index t) const { return model.num_integrated_pieces(t); }
 
   // The DOFs [u; a] of the field that is f(x, s) on side s of the cut (s = side of the piece's
   // centroid): u_i the value on node i's home piece, a_k the value where k is active minus u_i.

@@ -152,6 +152,36 @@ TEST_CASE("Fig. 14's cube: bare kappa grows like 1 / v_min (d^-3), scaled like d
   CHECK(std::abs(exponent(start.part_jacobi_constrained, 1e-4, tiny.part_jacobi_constrained, 1e-8)) < 0.01);
 }
 
+TEST_CASE("eq. 22 on every part of a support: Fig. 14's home slab is held, and Jacobi's kappa stays at the uncut cube's") {
+  // The cut x = -1 + d leaves each node of the face x = -1 a home part that is the slab between
+  // the face and the cut (relative volume ~ d), and its enrichment the rest of the support
+  // (fraction ~ 1 - d). Tested on the enrichments' parts only, eq. 22 never holds that node, and
+  // Jacobi-scaled kappa grows like d^-1 (1.6e7 at d = 1e-6 with epsilon = 1e-3). Tested on the
+  // home part too, the enrichment of the node's largest part is held, the slab moves with it,
+  // and the near-dependent pair N_i, N_i psi_i is gone: kappa is the uncut cube's Jacobi-scaled
+  // value (4.99), for every d the test reaches. Bounded means within a factor 2 of it.
+  const double epsilon = 1e-3;
+  const kerf::NewtonMatrixConditioning uncut = cube_cut_at(std::numeric_limits<double>::quiet_NaN());
+  for (const double d : {1e-4, 1e-6, 1e-8}) {
+    CAPTURE(d);
+    const kerf::NewtonMatrixConditioning cut = cube_cut_at(-1.0 + d, epsilon);
+    MESSAGE("d = " << d << ": " << cut.constrained << " of " << cut.enrichments << " enrichments held, Jacobi-scaled kappa "
+                   << cut.jacobi_constrained << " (uncut " << uncut.jacobi << ")");
+    // Four nodes lie on the face x = -1: their home slabs are held, as are the far corner
+    // slivers of the others (relative volume ~ d^3 < epsilon; from d = 1e-6 on, some corner
+    // slivers are pieces of their own, glued to nothing, which adds enrichments): every one.
+    CHECK(cut.constrained == cut.enrichments);
+    CHECK(cut.jacobi_constrained < 2.0 * uncut.jacobi);
+  }
+  // With Koschier's epsilon (1e-9) the home slab is held once it is thinner than that: at
+  // d = 1e-10 (relative volume ~ 1e-10), where the bare matrix is numerically singular.
+  const kerf::NewtonMatrixConditioning thin = cube_cut_at(-1.0 + 1e-10);
+  REQUIRE(thin.enrichments >= 8);
+  CHECK(thin.constrained == thin.enrichments);
+  CHECK(thin.jacobi_constrained < 2.0 * uncut.jacobi);
+  MESSAGE("d = 1e-10, epsilon = 1e-9: " << thin.constrained << " of " << thin.enrichments << " held, kappa " << thin.jacobi_constrained);
+}
+
 TEST_CASE("Fig. 14's cube cut through its centre: all eight nodes enriched, kappa well above the uncut cube's, eqs. 26-27 lower it") {
   const kerf::NewtonMatrixConditioning uncut = cube_cut_at(std::numeric_limits<double>::quiet_NaN());
   const kerf::NewtonMatrixConditioning centre = cube_cut_at(0.0);

@@ -29,19 +29,12 @@ struct FreeNewtonMatrix {
 };
 
 FreeNewtonMatrix free_newton_matrix(const LinearDynamicSystem& full, const DofMap& dofs, double dt,
-                                    const Eigen::VectorXd& koschier_t, const Eigen::SparseMatrix<double>& P) {
+                                    const Eigen::VectorXd& koschier_t, const CutXfemModel& model) {
   LinearDynamicSystem system = full;
   system.dofs = dofs;
   const ReducedDynamicSystem reduced(system);
-  std::vector<Eigen::Triplet<double>> entries;
-  for (Eigen::Index c = 0; c < P.outerSize(); ++c)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(P, c); it; ++it) {
-      const int i = dofs.free_index[static_cast<std::size_t>(it.row())], j = dofs.free_index[static_cast<std::size_t>(it.col())];
-      if (i >= 0 && j >= 0) entries.emplace_back(i, j, it.value());
-    }
-  Eigen::SparseMatrix<double> P_ff(dofs.num_free, dofs.num_free);
-  P_ff.setFromTriplets(entries.begin(), entries.end());
-  return {reduced.M_ff() + dt * dt * reduced.K_ff(), dofs.restrict_to_free(koschier_t), P_ff};
+  return {reduced.M_ff() + dt * dt * reduced.K_ff(), dofs.restrict_to_free(koschier_t),
+          free_part_basis(model.enrichment(), model.mesh().num_nodes(), dofs)};
 }
 
 // kappa of S^T A S with S = P T, T the Jacobi scaling of P^T A P. P^T A P is formed from A, so
@@ -82,14 +75,14 @@ NewtonMatrixConditioning newton_matrix_conditioning(const CutXfemModel& model, d
   for (double& v : with_volume.enriched) v = std::max(v, std::numeric_limits<double>::min());
   const Eigen::VectorXd koschier_t = koschier_preconditioner(with_volume, model.mesh().num_nodes());
 
-  const Eigen::SparseMatrix<double> P = part_basis(model.enrichment(), model.mesh().num_nodes());
-  const FreeNewtonMatrix bare = free_newton_matrix(full, make_cut_xfem_dof_map(model, {}, 0.0), dt, koschier_t, P);
+  const FreeNewtonMatrix bare = free_newton_matrix(full, make_cut_xfem_dof_map(model, {}, 0.0), dt, koschier_t, model);
   result.plain = condition(bare.A);
   result.jacobi = condition(scale_bilaterally(bare.A, jacobi_preconditioner(bare.A)));
   result.koschier = condition(scale_bilaterally(bare.A, bare.koschier_t));
   result.part_jacobi = part_jacobi_condition(bare);
-  const FreeNewtonMatrix constrained = free_newton_matrix(full, make_cut_xfem_dof_map(model, {}, epsilon), dt, koschier_t, P);
+  const FreeNewtonMatrix constrained = free_newton_matrix(full, make_cut_xfem_dof_map(model, {}, epsilon), dt, koschier_t, model);
   result.plain_constrained = condition(constrained.A);
+  result.jacobi_constrained = condition(scale_bilaterally(constrained.A, jacobi_preconditioner(constrained.A)));
   result.koschier_constrained = condition(scale_bilaterally(constrained.A, constrained.koschier_t));
   result.part_jacobi_constrained = part_jacobi_condition(constrained);
   return result;

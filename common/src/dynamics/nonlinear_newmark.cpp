@@ -18,6 +18,11 @@ NonlinearNewmarkIntegrator::NonlinearNewmarkIntegrator(const NonlinearDynamicSys
   P_.resize(dofs.num_free, static_cast<Eigen::Index>(dofs.free_index.size()));
   P_.setFromTriplets(entries.begin(), entries.end());
   Pt_ = P_.transpose();
+  if (system.solver_basis.S.size() > 0) {
+    if (system.solver_basis.S.rows() != dofs.num_free)
+      throw std::invalid_argument("NonlinearNewmarkIntegrator: the solver's basis is not of the free DOFs' size");
+    solver_->set_preconditioner_basis(system.solver_basis);
+  }
 }
 
 Eigen::VectorXd NonlinearNewmarkIntegrator::combine(const Eigen::VectorXd& free, const Eigen::VectorXd& prescribed) const {

@@ -49,27 +49,64 @@ private:
 /// (Saad, Iterative Methods, alg. 9.1: the same stopping test |r|^2 < tolerance^2 |b|^2, the same
 /// iteration count, the same reported error), so that it solves as "cg-ichol" and the Eigen CG
 /// before it did; only the product, the bottleneck of the algorithm, is our own.
+///
+/// With a basis (PreconditionerBasis) it is the same algorithm on S^T A S w = S^T b with Jacobi's
+/// scaling D = diag(S^T A S), run on each of the basis's components with its own step lengths,
+/// x = S w accumulated as it goes (so no S^-1 is needed for the starting guess): Saad's alg. 9.1
+/// with the preconditioner S D^-1 S^T, once per independent system. Its stopping test is each
+/// component's |r_w| <= tolerance |b_w| in that basis, which implies the whole system's.
 class JacobiCg final : public LinearSolver {
 public:
   explicit JacobiCg(const SolverSettings& settings) : tolerance_(settings.tolerance), max_iterations_(settings.max_iterations) {}
   std::string name() const override { return "cg-jacobi"; }
   void analyze_pattern(const Eigen::SparseMatrix<double>& A) override { A_.analyze_pattern(A); }
+  void set_preconditioner_basis(const PreconditionerBasis& basis) override {
+    const Eigen::Index n = basis.S.rows();
+    if (basis.S.cols() != n) throw std::invalid_argument("cg-jacobi: the preconditioner's basis must be square");
+    if (!basis.component.empty() && static_cast<Eigen::Index>(basis.component.size()) != n)
+      throw std::invalid_argument("cg-jacobi: the basis's components must label every column");
+    S_ = basis.S;
+    S_.makeCompressed();
+    component_ = basis.component.empty() ? std::vector<int>(static_cast<std::size_t>(n), 0) : basis.component;
+    num_components_ = 0;
+    for (const int c : component_) {
+      if (c < 0) throw std::invalid_argument("cg-jacobi: a basis component label is negative");
+      num_components_ = std::max(num_components_, c + 1);
+    }
+  }
   void factorize(const Eigen::SparseMatrix<double>& A) override {
     // A caller may skip analyze_pattern() after the pattern changed: it is checked, not trusted.
     if (!A_.has_pattern_of(A)) A_.analyze_pattern(A);
     A_.set_values(A);
-    // A positive definite matrix has a positive diagonal (A_ii = e_i^T A e_i): Jacobi divides by it.
-    const Eigen::VectorXd diagonal = A_.diagonal().head(A.rows());
+    if (S_.size() > 0 && S_.rows() != A.rows())
+      throw std::invalid_argument("cg-jacobi: the preconditioner's basis is not of the matrix's size");
+    // A positive definite matrix has a positive diagonal (e^T A e > 0 for every e, the basis
+    // vectors s_j included): Jacobi divides by it.
+    const Eigen::VectorXd diagonal = S_.size() > 0 ? diagonal_in_basis(A) : Eigen::VectorXd(A_.diagonal().head(A.rows()));
     if (A.rows() > 0 && !(diagonal.minCoeff() > 0.0)) throw NotPositiveDefinite(not_positive_definite);
     ++factorisations_;
-    inverse_diagonal_ = Eigen::VectorXd::Zero(A_.padded_size());
+    inverse_diagonal_ = Eigen::VectorXd::Zero(S_.size() > 0 ? A.rows() : A_.padded_size());
     inverse_diagonal_.head(A.rows()) = diagonal.cwiseInverse();
   }
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     require_finite_right_hand_side(b);
-    const Eigen::Index n = A_.size(), padded = A_.padded_size();
+    const Eigen::Index n = A_.size();
     if (b.size() != n) throw std::invalid_argument("cg-jacobi: the right-hand side does not have the matrix's size");
     if (x.size() != n) x = Eigen::VectorXd::Zero(n);
+    const bool converged = S_.size() > 0 ? solve_in_basis(b, x) : solve_in_unknowns(b, x);
+    if (!x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
+    if (!converged)
+      throw std::runtime_error("cg-jacobi did not converge in " + std::to_string(iterations_) + " iterations (relative residual " +
+                               std::to_string(error_) + ")");
+  }
+  int iterations() const override { return iterations_; }
+  int factorisations() const override { return factorisations_; }
+
+private:
+  // Eigen's iteration (the class comment), on the unknowns themselves. Returns whether it met
+  // the tolerance.
+  bool solve_in_unknowns(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    const Eigen::Index n = A_.size(), padded = A_.padded_size();
     // The vectors padded to whole blocks (their padding stays 0).
     Eigen::VectorXd b_padded = Eigen::VectorXd::Zero(padded), x_padded = Eigen::VectorXd::Zero(padded);
     b_padded.head(n) = b;
@@ -82,7 +119,7 @@ public:
     error_ = 0.0;
     if (b_norm2 == 0.0) {
       x.setZero();
-      return;
+      return true;
     }
     const double threshold = std::max(tolerance_ * tolerance_ * b_norm2, std::numeric_limits<double>::min());
     double residual_norm2 = residual.squaredNorm();
@@ -107,19 +144,113 @@ public:
     }
     error_ = std::sqrt(residual_norm2 / b_norm2);
     x = x_padded.head(n);
-    if (!x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
-    if (!(error_ <= tolerance_))
-      throw std::runtime_error("cg-jacobi did not converge in " + std::to_string(iterations_) + " iterations (relative residual " +
-                               std::to_string(error_) + ")");
     // With the residual r = b - A x, x^T A x = b . x - x . r <= b . x + |x| |r|: if even this
     // bound is <= 0, A is proven not positive definite (as for Eigen's CG below).
     if (b.dot(x) + x.norm() * error_ * b.norm() <= 0.0) throw NotPositiveDefinite(not_positive_definite);
+    return error_ <= tolerance_;
   }
-  int iterations() const override { return iterations_; }
-  int factorisations() const override { return factorisations_; }
 
-private:
+  // The same iteration in the basis, one per component (the class comment). Vectors named _w
+  // live in the basis (size n), the others are the unknowns padded to whole blocks. Returns
+  // whether every component met the tolerance.
+  bool solve_in_basis(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    const Eigen::Index n = A_.size(), padded = A_.padded_size();
+    const auto C = static_cast<std::size_t>(num_components_);
+    Eigen::VectorXd x_padded = Eigen::VectorXd::Zero(padded), q = Eigen::VectorXd::Zero(padded), Aq(padded);
+    x_padded.head(n) = x;
+    A_.multiply(x_padded, Aq);
+    Eigen::VectorXd r_w = S_.transpose() * (b - Aq.head(n));
+    const Eigen::VectorXd b_w = S_.transpose() * b;
+    // Per component: |b_w|^2, |r_w|^2, r_w . z_w, p_w . (S^T A S p_w), and the step lengths.
+    const auto per_component = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+      std::vector<double> sum(C, 0.0);
+      for (Eigen::Index j = 0; j < n; ++j) sum[static_cast<std::size_t>(component_[static_cast<std::size_t>(j)])] += u[j] * v[j];
+      return sum;
+    };
+    const std::vector<double> b_norm2 = per_component(b_w, b_w);
+    std::vector<double> threshold(C), residual_norm2 = per_component(r_w, r_w);
+    std::vector<char> active(C);
+    for (std::size_t c = 0; c < C; ++c) {
+      threshold[c] = std::max(tolerance_ * tolerance_ * b_norm2[c], std::numeric_limits<double>::min());
+      active[c] = residual_norm2[c] >= threshold[c];
+    }
+    const auto any_active = [&] { return std::find(active.begin(), active.end(), 1) != active.end(); };
+    // The step scalars of one iteration, spread over the unknowns of each component (0 on the
+    // components that have converged, which then stay where they are).
+    const auto spread = [&](const std::vector<double>& value) {
+      Eigen::VectorXd result(n);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const auto c = static_cast<std::size_t>(component_[static_cast<std::size_t>(j)]);
+        result[j] = active[c] ? value[c] : 0.0;
+      }
+      return result;
+    };
+    iterations_ = 0;
+    if (any_active()) {
+      Eigen::VectorXd z_w = inverse_diagonal_.cwiseProduct(r_w), p_w = z_w;
+      std::vector<double> rz = per_component(r_w, z_w), alpha(C), beta(C);
+      int i = 0;
+      while (i < max_iterations_) {
+        q.head(n) = S_ * p_w;
+        A_.multiply(q, Aq);
+        const Eigen::VectorXd Ap_w = S_.transpose() * Aq.head(n);
+        const std::vector<double> pAp = per_component(p_w, Ap_w);
+        for (std::size_t c = 0; c < C; ++c) alpha[c] = active[c] ? rz[c] / pAp[c] : 0.0;
+        const Eigen::VectorXd alpha_spread = spread(alpha);
+        x_padded.head(n) += S_ * alpha_spread.cwiseProduct(p_w);
+        r_w -= alpha_spread.cwiseProduct(Ap_w);
+        residual_norm2 = per_component(r_w, r_w);
+        for (std::size_t c = 0; c < C; ++c) active[c] = active[c] && residual_norm2[c] >= threshold[c];
+        if (!any_active()) break;
+        z_w = inverse_diagonal_.cwiseProduct(r_w);
+        const std::vector<double> rz_new = per_component(r_w, z_w);
+        for (std::size_t c = 0; c < C; ++c) beta[c] = active[c] ? rz_new[c] / rz[c] : 0.0;
+        rz = rz_new;
+        p_w = z_w + spread(beta).cwiseProduct(p_w);
+        ++i;
+      }
+      iterations_ = i;
+    }
+    double b_total = 0.0, r_total = 0.0;
+    for (std::size_t c = 0; c < C; ++c) {
+      b_total += b_norm2[c];
+      r_total += residual_norm2[c];
+    }
+    x = x_padded.head(n);
+    if (b_total == 0.0) {
+      x.setZero();
+      error_ = 0.0;
+      return true;
+    }
+    error_ = std::sqrt(r_total / b_total);
+    // A proof of indefiniteness as above, from the residual of the unknowns (one more product).
+    x_padded.head(n) = x;
+    A_.multiply(x_padded, Aq);
+    const double residual_norm = (b - Aq.head(n)).norm();
+    if (b.dot(x) + x.norm() * residual_norm <= 0.0) throw NotPositiveDefinite(not_positive_definite);
+    return !any_active();
+  }
+
+  // The diagonal of S^T A S: s_j^T A s_j = sum over the entries a, b of column j of
+  // s_a s_b A(r_a, r_b), with A read in its upper triangle only (the step's matrices may store
+  // no more).
+  Eigen::VectorXd diagonal_in_basis(const Eigen::SparseMatrix<double>& A) const {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(S_.cols());
+    for (Eigen::Index j = 0; j < S_.cols(); ++j) {
+      const Eigen::Index begin = S_.outerIndexPtr()[j], end = S_.outerIndexPtr()[j + 1];
+      for (Eigen::Index a = begin; a < end; ++a)
+        for (Eigen::Index c = begin; c < end; ++c) {
+          const Eigen::Index row = S_.innerIndexPtr()[a], column = S_.innerIndexPtr()[c];
+          d[j] += S_.valuePtr()[a] * S_.valuePtr()[c] * A.coeff(std::min(row, column), std::max(row, column));
+        }
+    }
+    return d;
+  }
+
   SymmetricBlockMatrix A_;
+  Eigen::SparseMatrix<double> S_; // the preconditioner's basis; empty: the unknowns themselves
+  std::vector<int> component_;    // per column of S_, its component
+  int num_components_ = 0;
   Eigen::VectorXd inverse_diagonal_;
   double tolerance_;
   int max_iterations_;

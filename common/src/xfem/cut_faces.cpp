@@ -10,7 +10,7 @@ TriangleSurface cut_face_surface(const CutXfemModel& model, const Eigen::VectorX
   std::vector<Eigen::Vector3i> triangles;
   for (std::size_t e = 0; e < pieces.tets.size(); ++e) {
     const Eigen::Index t = pieces.entry_tet[e];
-    if (!model.split(t)) continue;
+    if (!model.integrated_by_pieces(t)) continue;
     const TetPieces& tp = pieces.tets[e];
     for (int p = 0; p < tp.num_pieces(); ++p) {
       const Eigen::MatrixX3d w = model.phantom_displacements(u, t, p);

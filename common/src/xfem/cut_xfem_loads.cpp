@@ -49,7 +49,7 @@ Eigen::VectorXd cut_xfem_scene_loads(const Scene& scene, const CutXfemModel& mod
     for (const Eigen::Index face : region.faces) {
       const Eigen::Index t = boundary.tet[static_cast<std::size_t>(face)];
       const int local_face = boundary.local_face[static_cast<std::size_t>(face)];
-      const int num_pieces = model.split(t) ? pieces.num_pieces(t) : 1;
+      const int num_pieces = model.num_integrated_pieces(t);
       const int e = pieces.entry[static_cast<std::size_t>(t)];
       for (int p = 0; p < num_pieces; ++p) {
         std::vector<std::vector<Eigen::Vector3d>> polygons;

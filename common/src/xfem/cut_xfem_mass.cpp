@@ -37,7 +37,7 @@ std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Ei
     });
     return masses;
   }
-  if (!model.split(t) || pieces.num_pieces(t) == 1) {
+  if (!model.integrated_by_pieces(t) || pieces.num_pieces(t) == 1) {
     // The whole tet, possibly with enrichments that are 1 all over it.
     if (n == 4) return {tet4_mass(tet_corners(mesh, t), density)};
     Eigen::Matrix<double, 10, 3> X;

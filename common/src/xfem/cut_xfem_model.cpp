@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace kerf {
 
@@ -372,8 +373,11 @@ Eigen::Matrix<double, 4, Eigen::Dynamic> CutXfemModel::branch_functions_at(Eigen
       side = closest_triangle_side(local_cut_surface(pieces_.tets[static_cast<std::size_t>(e)]), x);
   // Behind the front (x_a < 0) theta = +-pi is the cut; where the cut is curved, the frame's
   // half-plane theta = +-pi is not the cut itself, and a point of a piece above the cut can have
-  // x_b < 0. Reflecting b there puts F_1's jump on the cut the pieces follow (notes 5.3, "curved
-  // or kinked fronts"); on a planar cut the reflection never happens.
+  // x_b < 0. Reflecting b there puts F_1's jump on the cut the pieces follow (Paulus et al.'s
+  // frame is piecewise constant and says nothing of curved cuts); on a planar cut the reflection
+  // never happens. The reflected
+  // functions are G(x) = F(x_a(x), -x_b(x)), so grad G = dF/dx_a grad x_a - dF/dx_b grad x_b:
+  // grad x_b changes sign with x_b (branch_functions differentiates through it).
   // A point on the cut itself (a vertex of a piece, |x_b| at round-off) takes its side's value,
   // theta = side * pi (F_1 is two-valued there).
   if (side != 0 && polar.x_a < 0.0 && std::abs(polar.x_b) <= 1e-10 * polar.r) {
@@ -383,6 +387,7 @@ Eigen::Matrix<double, 4, Eigen::Dynamic> CutXfemModel::branch_functions_at(Eigen
     polar.x_b = -polar.x_b;
     polar.theta = -polar.theta;
     polar.b = -polar.b;
+    polar.grad_x_b = -polar.grad_x_b;
   }
   const BranchValues at_x = branch_functions(polar);
   const Corners X = tet_corners(mesh_, t);
@@ -455,13 +460,21 @@ Eigen::Index CutXfemModel::num_negative_weights() const {
 }
 
 double CutXfemModel::integrated_volume(Eigen::Index t, int p) const {
+  const std::span<const Piece> list = integrated_pieces(t);
+  if (p < 0 || static_cast<std::size_t>(p) >= list.size())
+    throw std::out_of_range("CutXfemModel::integrated_volume: tet " + std::to_string(t) + " is integrated as " + std::to_string(list.size()) +
+                            " piece(s), not " + std::to_string(p + 1));
   double volume = 0.0;
-  for (const Point& point : integrated_pieces(t)[static_cast<std::size_t>(p)].points) volume += point.weight;
+  for (const Point& point : list[static_cast<std::size_t>(p)].points) volume += point.weight;
   return volume;
 }
 
 EnrichmentVolumes CutXfemModel::enrichment_volumes() const {
-  return kerf::enrichment_volumes(mesh_, pieces_, enrichment_, [this](Eigen::Index t, int p) { return integrated_volume(t, p); });
+  return kerf::enrichment_volumes(mesh_, pieces_, enrichment_, [this](Eigen::Index t) {
+    std::vector<double> volumes(static_cast<std::size_t>(num_integrated_pieces(t)));
+    for (std::size_t p = 0; p < volumes.size(); ++p) volumes[p] = integrated_volume(t, static_cast<int>(p));
+    return volumes;
+  });
 }
 
 Eigen::Index CutXfemModel::num_piece_points() const {
@@ -801,7 +814,7 @@ std::vector<std::pair<int, double>> CutXfemModel::branch_values_on_side(Eigen::I
 
 Eigen::MatrixX3d CutXfemModel::phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const {
   const int n = mesh_.nodes_per_tet();
-  const Piece& piece = split(t) ? piece_data_[static_cast<std::size_t>(t)][static_cast<std::size_t>(p)] : whole_->pieces[static_cast<std::size_t>(t)];
+  const Piece& piece = integrated_by_pieces(t) ? piece_data_[static_cast<std::size_t>(t)][static_cast<std::size_t>(p)] : whole_->pieces[static_cast<std::size_t>(t)];
   Eigen::MatrixX3d u_p(n, 3);
   for (int a = 0; a < n; ++a) {
     Eigen::Vector3d value = u.segment<3>(3 * mesh_.tets(t, a));
@@ -847,7 +860,7 @@ PhantomMesh CutXfemModel::phantom_mesh() const {
       for (const Point& point : list[p].points) volume += point.weight;
       // A point of the piece: the centre of its largest cell, or of the tet.
       Eigen::Vector3d point = X.colwise().mean().transpose();
-      if (split(t) && e >= 0 && list.size() > 1) {
+      if (integrated_by_pieces(t) && e >= 0 && list.size() > 1) {
         const TetPieces& tp = pieces_.tets[static_cast<std::size_t>(e)];
         double largest = -1.0;
         for (const int c : tp.pieces[p].cells) {
@@ -895,7 +908,7 @@ std::vector<UnheldPiece> cut_xfem_unheld_pieces(const CutXfemModel& model, const
 }
 
 int CutXfemModel::piece_at(Eigen::Index t, const Eigen::Vector3d& x) const {
-  if (!split(t) || pieces_.num_pieces(t) <= 1) return 0;
+  if (!integrated_by_pieces(t) || pieces_.num_pieces(t) <= 1) return 0;
   const TetPieces& tp = pieces_.tets[static_cast<std::size_t>(pieces_.entry[static_cast<std::size_t>(t)])];
   const std::vector<int> found = pieces_containing(tp, x, 1e-12 * tp.diameter);
   if (found.empty()) return -1;

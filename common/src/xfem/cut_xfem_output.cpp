@@ -33,7 +33,7 @@ void write_cut_xfem_vtu(const std::filesystem::path& file, const CutXfemModel& m
     // A tet with branch functions is drawn cell by cell even as one piece: the partial cut
     // inside a tet the front crosses opens there (chapter 5).
     const bool branch = model.has_branch_functions(t);
-    if (!model.split(t) || e < 0 || (pieces.num_pieces(t) == 1 && !branch)) {
+    if (!model.integrated_by_pieces(t) || e < 0 || (pieces.num_pieces(t) == 1 && !branch)) {
       // Drawn whole: corners shared with the neighbours, displaced by the tet's one field
       // (at a corner that is the node's own u_i, or u_i + a_k where an enrichment is 1).
       const Eigen::MatrixX3d u_p = model.phantom_displacements(u, t, 0);

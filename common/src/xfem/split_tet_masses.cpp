@@ -15,10 +15,10 @@ SplitTetMasses::SplitTetMasses(const CutXfemModel& model, const PieceRuleFunctio
     throw std::invalid_argument("SplitTetMasses: the pieces do not say which tets kept their pieces (make them with recut_mesh_into_pieces)");
   split_.assign(static_cast<std::size_t>(T), {});
   for (Eigen::Index t = 0; t < T; ++t) {
-    // cut_xfem_piece_masses integrates the pieces by `rule` only here: split, several pieces,
+    // cut_xfem_piece_masses integrates the pieces by `rule` only here: integrated by pieces, several,
     // no branch functions. Elsewhere its masses are the element's or the model's points'.
     const int np = pieces.num_pieces(t);
-    if (model.has_branch_functions(t) || !model.split(t) || np == 1) continue;
+    if (model.has_branch_functions(t) || !model.integrated_by_pieces(t) || np == 1) continue;
     const std::size_t k = static_cast<std::size_t>(t);
     if (before && pieces.kept_from_previous[k] && before->split_[k].size() == static_cast<std::size_t>(np)) {
       split_[k] = before->split_[k];

@@ -24,6 +24,7 @@ struct NewtonMatrixConditioning {
   double jacobi = 0.0;              ///< kappa(T A T), T = diag(A)^(-1/2)
   double koschier = 0.0;            ///< kappa(T A T), T of eqs. 26-27
   double plain_constrained = 0.0;   ///< kappa(A) after eq. 22 constrains v < epsilon
+  double jacobi_constrained = 0.0;  ///< kappa(T A T), Jacobi's T, after eq. 22 (on every part, home parts too)
   double koschier_constrained = 0.0; ///< eq. 22 and eqs. 26-27 together, Koschier's three steps (but the perturbation)
   double part_jacobi = 0.0;         ///< kappa(S^T A S), S = P T: the part basis (part_basis.hpp), then Jacobi;
                                     ///< infinity when a part is below round-off of P^T A P's diagonal
@@ -33,7 +34,7 @@ struct NewtonMatrixConditioning {
   int constrained = 0;              ///< enrichments eq. 22 constrains
 };
 
-/// Assembles A = M + dt^2 K of `model` and measures the seven condition numbers.
+/// Assembles A = M + dt^2 K of `model` and measures the eight condition numbers.
 /// @param density   rho (kg/m^3) for the mass
 /// @param dt        the time step (s)
 /// @param mass_rule a piece rule exact for degree 2 (Tet4) or 4 (Tet10), for the mass

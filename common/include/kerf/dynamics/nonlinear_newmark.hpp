@@ -42,6 +42,10 @@ struct NonlinearDynamicSystem {
   std::function<PrescribedMotion(double)> motion;   ///< the prescribed DOFs' u, v, a at t
   InternalForce internal_force;                     ///< f_int and its tangent
   std::function<double(const Eigen::VectorXd&)> elastic_energy; ///< W(u) with f_int = dW/du (J)
+  /// The basis the steps' iterative solver preconditions in (LinearSolver::set_preconditioner_basis),
+  /// on the free DOFs; empty: the free DOFs themselves. A cut body's is
+  /// cut_body_preconditioner_basis (part_basis.hpp).
+  PreconditionerBasis solver_basis;
 };
 
 /// How a step treats f_int.

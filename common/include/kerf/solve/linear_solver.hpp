@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace kerf {
 
@@ -31,6 +32,24 @@ struct SolverSettings {
   /// CHOLMOD's fill-reducing ordering: "nested-dissection" (the default), "metis", "amd" or
   /// "cholmod" (CHOLMOD's own choice); see kerf::CholmodSolver.
   std::string ordering = "nested-dissection";
+};
+
+/// A basis for "cg-jacobi" to precondition in: x = S w, S square and invertible (the unknowns'
+/// size). Jacobi then scales S^T A S by its diagonal D, which preconditions A by S D^-1 S^T.
+///
+/// `component` (one label per column of S, 0 .. C - 1, or empty for one) is the caller's promise
+/// that S^T A S couples no two unknowns of different labels: the system is C independent ones,
+/// and conjugate gradients run on each with its own step lengths (in lockstep, one product with
+/// A for all), each until its own residual is small relative to its own right-hand side.
+///
+/// Why: chapter 6's cut bodies solve in [u; a], in which no diagonal scaling separates a node's
+/// two functions when one of its parts is thin, nor a piece the cut freed from the body it was cut
+/// off; in the part basis (dynamics/part_basis.hpp) both come apart, and a freed piece is a
+/// component of its own, which the body's iterations never move (one CG for all would, through
+/// its step lengths, by the round-off of the piece's residual times the CG polynomial there).
+struct PreconditionerBasis {
+  Eigen::SparseMatrix<double> S;
+  std::vector<int> component;
 };
 
 /// A solver for A x = b with A sparse, symmetric positive definite, both triangles stored.
@@ -60,6 +79,11 @@ public:
   virtual void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   /// Iterations of the last solve (1 for a direct solver).
   virtual int iterations() const { return 1; }
+  /// The basis an iterative solver's preconditioner works in (PreconditionerBasis). Kept until
+  /// set again; a new size of the unknowns needs a new basis. "cg-jacobi" uses it; every other
+  /// solver ignores it: a direct solve's answer does not depend on the basis, and the other CGs
+  /// keep their own preconditioners.
+  virtual void set_preconditioner_basis(const PreconditionerBasis& basis) { static_cast<void>(basis); }
   /// Numeric factorisations (or preconditioner set-ups) done so far: one per factorize() call,
   /// except for "cg-cholmod", which factorises only when its old factor stops paying.
   virtual int factorisations() const = 0;

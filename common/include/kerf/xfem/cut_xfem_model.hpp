@@ -224,10 +224,18 @@ public:
   Eigen::Index num_branch_nodes() const { return tip_ ? tip_->enrichment.num_branch_nodes() : 0; }
   /// The first DOF node of branch slot k's four functions: N + M + 4 k.
   Eigen::Index branch_dof_node(int k) const { return mesh_.num_nodes() + enrichment_.num_enrichments() + 4 * k; }
-  /// Whether tet t is integrated piece by piece (an enrichment acts in it and it has pieces).
-  bool split(Eigen::Index t) const { return !piece_data_[static_cast<std::size_t>(t)].empty(); }
-  /// The volume of piece p of tet t as its rule sees it, the sum of the weights (m^3); for a
-  /// tet integrated whole (p = 0), the tet's volume.
+  /// Whether tet t is integrated piece by piece, each of the cut's pieces (one if no cut splits
+  /// it) as its own phantom element: an enrichment or a branch function acts in it. Not the same
+  /// as being cut: a tet a cut splits, but on none of whose pieces an enrichment acts, is
+  /// integrated whole (its field is continuous, the class comment).
+  bool integrated_by_pieces(Eigen::Index t) const { return !piece_data_[static_cast<std::size_t>(t)].empty(); }
+  /// How many pieces tet t is integrated as: pieces().num_pieces(t) where it is integrated by
+  /// pieces, 1 where it is integrated whole (cut or not). Loop over these, not over the cut's
+  /// pieces, wherever the model's pieces are asked for.
+  int num_integrated_pieces(Eigen::Index t) const { return static_cast<int>(integrated_pieces(t).size()); }
+  /// The volume of integrated piece p of tet t as its rule sees it, the sum of the weights
+  /// (m^3); for a tet integrated whole (p = 0), the tet's volume.
+  /// @throws std::out_of_range unless 0 <= p < num_integrated_pieces(t)
   double integrated_volume(Eigen::Index t, int p) const;
   /// V_enr and V_supp of every enrichment from the rules' weights (enrichment_volumes.hpp).
   EnrichmentVolumes enrichment_volumes() const;
