@@ -30,11 +30,13 @@
      hinge      Koschier's Fig. 10: the cube [0, 1]^3 of five tets hinged on its edge {x = 0, z = 1},
                 gravity -z, E = 1e8 Pa (stiff: strain ~1e-4), nu = 0.3, rho = 1000, cut by x = c into a
                 slice [0, c] that swings down to rest (Newmark gamma = 0.6, beta = 0.3025, Rayleigh
-                alpha = 4 1/s, dt = 0.02 s, 20 s), by XFEM and by element duplication (each piece a
-                full copy of its element, cut_dynamics_scenes.hpp). hinge.csv: the true centre of
-                mass of the slice at rest, its horizontal offset from the hinge, and the offset the
-                geometry predicts for duplication (the duplicated elements' centre of mass under
-                the hinge).
+                alpha = 4 1/s, dt = 0.02 s, 20 s), by XFEM with the consistent mass ("xfem"), with
+                the scenes' default lumped mass ("xfem_lumped", per-piece Bernstein), with the
+                former default ("xfem_virtual_tet", each piece's weight at its tet's centroid), and
+                by element duplication (each piece a full copy of its element,
+                cut_dynamics_scenes.hpp). hinge.csv: the true centre of mass of the slice at rest,
+                its horizontal offset from the hinge, and the offset the geometry predicts (the
+                model's centre of weight under the hinge).
      slab       Koschier's Fig. 11 as Kerf reads it: a plate of 61 x 1 x 11 blocks of 1 cm (six Tet4
                 a block) on the wall x = 0, gravity -z, E = 1e8 Pa, nu = 0.3, rho = 1000, cut along
                 its length by z = 1.1, 2.7, 4.9, 7.6 cm into five slices 1.1 to 3.4 cm thick; Rayleigh
@@ -46,14 +48,14 @@
                 zig-zag that unfolds, E = 100 kPa, alpha = 2 1/s, dt = 0.02 s, 20 s (--quick 3.6 s
                 of 0.06 s, not at rest). unfold.csv: the true and the model's centre of mass at rest
                 from the hinge, the model's volume; unfold_history.csv: the true one every 5 steps.
-     rotations  the demo's flap (chapters/06_newmark: Tet4 3 x 6 x 19, cut at z = 0.15, per-piece
+     rotations  the demo's flap (chapters/06_newmark: Tet4 3 x 6 x 19, cut at z = 0.15, the default
                 lumped mass, Rayleigh [3, 0.002]), 0.6 s, frozen rotations and Newton per step
                 against a Newton run at dt = 0.625 ms (Newton to a relative residual of 1e-10):
                 rotations.csv, the flap tip's largest error over the run, the linear solves and
                 the milliseconds, against dt. A run whose step matrix Cholesky refuses (Newton's
                 consistent tangent in a large step) is retried with LDL^T, and written as NaN
                 if that fails too.
-     explicit   the same flap, linear XFEM, per-piece lumped mass, central difference forced at
+     explicit   the same flap, linear XFEM, the default lumped mass, central difference forced at
                 0.9, 1.01 and 1.1 times the true critical step 2 / omega_max (omega_max by
                 eigen_modes.hpp on M phi = mu K phi, mu = 1 / omega_max^2): explicit.csv, the energy
                 every step, and explicit_growth.csv, its growth per step against the closed form
@@ -138,6 +140,35 @@ double predicted_offset(const Eigen::Vector3d& true_com, const Eigen::Vector3d& 
   return ax * std::cos(phi) + az * std::sin(phi);
 }
 
+// The centre of the slice's weight as the model has it, in the reference state: where the
+// weights of its pieces act. Consistent and Bernstein masses put each piece's at its own centre
+// of mass; the virtual tet at its tet's centroid; duplication gives every tet the slice touches
+// its whole volume at its centroid.
+Eigen::Vector3d slice_weight_centre(const cut_dynamics::CutDynamicBody& body, double c, const std::string& method) {
+  if (method == "xfem" || method == "xfem_lumped")
+    return body.centre_of_mass(body.zero(), [c](const Eigen::Vector3d& x) { return x.x() < c; });
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  double volume = 0.0;
+  for (Eigen::Index t = 0; t < body.mesh.num_tets(); ++t) {
+    const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(body.mesh, t);
+    if (X.col(0).minCoeff() >= c) continue;
+    double V = cut_dynamics::tet_volume(body.mesh, t);
+    if (method == "xfem_virtual_tet" && X.col(0).maxCoeff() > c) {
+      // The tet's piece x < c (its pieces are the two sides of the plane): its volume.
+      const kerf::TetPieces& cut = body.pieces.tets[static_cast<std::size_t>(body.pieces.entry[static_cast<std::size_t>(t)])];
+      V = 0.0;
+      for (int p = 0; p < static_cast<int>(cut.pieces.size()); ++p) {
+        const kerf::PieceQuadratureRule rule = kerf::subtet_rule(cut, p, 1);
+        double w = 0.0, x = 0.0;
+        for (std::size_t q = 0; q < rule.points.size(); ++q) w += rule.weights[q], x += rule.weights[q] * rule.points[q].x();
+        if (x / w < c) V += w;
+      }
+    }
+    moment += V * X.colwise().mean().transpose(), volume += V;
+  }
+  return moment / volume;
+}
+
 void run_hinge(bool quick, const std::filesystem::path& out) {
   std::ofstream csv(out / "hinge.csv");
   csv.precision(12);
@@ -148,8 +179,12 @@ void run_hinge(bool quick, const std::filesystem::path& out) {
               steps);
   const std::vector<double> cuts = quick ? std::vector<double>{0.3} : std::vector<double>{0.2, 0.35, 0.5, 0.65, 0.8};
   for (const double c : cuts)
-    for (const bool duplication : {false, true}) {
+    for (const std::string method : {"xfem", "xfem_lumped", "xfem_virtual_tet", "duplication"}) {
+      const bool duplication = method == "duplication";
       const auto body = cut_dynamics::hinged_cube(c, cube_material, duplication ? cut_dynamics::duplication_rule : cut_dynamics::piece_rule);
+      if (method == "xfem_lumped" || method == "xfem_virtual_tet")
+        body->use_lumped_mass(method == "xfem_lumped" ? kerf::LumpingScheme::bernstein : kerf::LumpingScheme::virtual_tet, cube_material.density,
+                              {0, 0, -9.81}, cut_dynamics::piece_rule);
       body->system.rayleigh_alpha = 4.0;
       kerf::NonlinearNewmarkSettings settings = newton_settings();
       settings.newmark = {0.3025, 0.6};
@@ -158,30 +193,15 @@ void run_hinge(bool quick, const std::filesystem::path& out) {
       for (int n = 0; n < steps; ++n) integrator.step(state);
       const auto on_slice = [c](const Eigen::Vector3d& x) { return x.x() < c; };
       const Eigen::Vector3d com = body->centre_of_mass(state.u, on_slice), com0 = body->centre_of_mass(body->zero(), on_slice);
-      // The model's centre of mass in the reference state: XFEM integrates the slice's pieces
-      // exactly, so it is the slice's own; duplication gives every element the slice touches its
-      // whole volume, so it is the centroid of those elements.
-      Eigen::Vector3d model_com = com0;
-      if (duplication) {
-        Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-        double volume = 0.0;
-        for (Eigen::Index t = 0; t < body->mesh.num_tets(); ++t) {
-          const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(body->mesh, t);
-          if (X.col(0).minCoeff() >= c) continue;
-          const double V = cut_dynamics::tet_volume(body->mesh, t);
-          moment += V * X.colwise().mean().transpose(), volume += V;
-        }
-        model_com = moment / volume;
-      }
       const double kinetic = 0.5 * state.v.dot(body->system.M * state.v);
       const Eigen::Vector3d d = com - Eigen::Vector3d(0, com.y(), 1), d0 = com0 - Eigen::Vector3d(0, com0.y(), 1);
       const double rotation = std::acos(std::clamp(d.normalized().dot(d0.normalized()), -1.0, 1.0)) * 180.0 / pi;
-      const double predicted = predicted_offset(com0, model_com);
-      csv << c << ',' << (duplication ? "duplication" : "xfem") << ',' << kinetic << ',' << com.x() << ',' << com.y() << ',' << com.z() << ','
-          << predicted << ',' << rotation << '\n';
-      std::printf("  c = %.2f %-11s: slice centre of mass at rest x = %+.6e m from the hinge (geometry predicts %+.6e), "
+      const double predicted = predicted_offset(com0, slice_weight_centre(*body, c, method));
+      csv << c << ',' << method << ',' << kinetic << ',' << com.x() << ',' << com.y() << ',' << com.z() << ',' << predicted << ',' << rotation
+          << '\n';
+      std::printf("  c = %.2f %-16s: slice centre of mass at rest x = %+.6e m from the hinge (geometry predicts %+.6e), "
                   "rotated %.2f deg, kinetic %.2e J\n",
-                  c, duplication ? "duplication" : "xfem", com.x(), predicted, rotation, kinetic);
+                  c, method.c_str(), com.x(), predicted, rotation, kinetic);
     }
 }
 

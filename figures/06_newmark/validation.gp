@@ -2,7 +2,8 @@
 # slice_swing.png     from slice_history.csv: Schoch's falling slice, linear XFEM against
 #                     corotational XFEM: the slice's rotation, the stretch of its edges, the energies;
 # hinge_offset.png    from hinge.csv: Koschier's hinged cube, the slice's centre of mass at rest
-#                     from the hinge, XFEM and element duplication, with the geometry's prediction;
+#                     from the hinge, XFEM (consistent, lumped, virtual-tet lumping) and element
+#                     duplication, with the geometry's predictions;
 # rotations_cost.png  from rotations.csv: frozen rotations against Newton per step, error of the
 #                     flap tip against dt and against the milliseconds it cost;
 # explicit_blowup.png from explicit.csv: the central difference at 0.9, 1.01, 1.1 dt_crit.
@@ -44,10 +45,15 @@ set xlabel "cut position c (m); the slice is [0, c] x [0, 1] x [0, 1]"
 set ylabel "slice's centre of mass at rest, x from the hinge (m)"
 set key bottom right
 set xrange [0.1:0.9]
-plot "hinge.csv" using 1:(strcol(2) eq "xfem" ? $4 : NaN) w p pt 7 ps 1.6 lc rgb "#1f77b4" t "XFEM (pieces integrated exactly)", \
+set yrange [-0.45:0.05]
+plot "hinge.csv" using 1:(strcol(2) eq "xfem" ? $4 : NaN) w p pt 7 ps 1.6 lc rgb "#1f77b4" t "XFEM, consistent mass (pieces integrated exactly)", \
+     "" using 1:(strcol(2) eq "xfem_lumped" ? $4 : NaN) w p pt 6 ps 2.4 lc rgb "#2ca02c" t "XFEM, default lumped mass (Bernstein: each piece's own first moment)", \
+     "" using 1:(strcol(2) eq "xfem_virtual_tet" ? $4 : NaN) w p pt 9 ps 1.6 lc rgb "#ff7f0e" t "XFEM, virtual-tet lumping (each piece's weight at its tet's centroid)", \
+     "" using 1:(strcol(2) eq "xfem_virtual_tet" ? $7 : NaN) w l dt 3 lc rgb "#ff7f0e" notitle, \
      "" using 1:(strcol(2) eq "duplication" ? $4 : NaN) w p pt 5 ps 1.6 lc rgb "#d62728" t "element duplication (a full element per piece)", \
-     "" using 1:(strcol(2) eq "duplication" ? $7 : NaN) w l dt 2 lc rgb "#555555" t "geometry: (c/2 - 1/2) / sqrt 2 (the cube's centre under the hinge)"
+     "" using 1:(strcol(2) eq "duplication" ? $7 : NaN) w l dt 2 lc rgb "#555555" t "geometry: the model's centre of weight under the hinge"
 unset xrange
+unset yrange
 
 set output "rotations_cost.png"
 set terminal pngcairo size 1200,550

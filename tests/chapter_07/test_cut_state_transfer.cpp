@@ -193,8 +193,8 @@ TransferErrors transfer_and_measure(const kerf::TetMesh& mesh, const CutModel& f
 // (one rounding of u + a). 1e-12 leaves room for other compilers' round-off over a few hundred
 // tets; 1e-15 for one rounding. HRZ lumping is measured, not asserted: it scales each piece's
 // diagonal to the piece's mass, which is not additive when a piece is split, so its kinetic
-// energy changes at a rebuild (measured 2.5e-4, 5.8e-5 and 4.9e-5 relative); the row sum and
-// the virtual tet (the scene's "lumped") are sums over the pieces and keep it.
+// energy changes at a rebuild (measured 2.5e-4, 5.8e-5 and 4.9e-5 relative); the row sum (on
+// these Tet4 the scene's "lumped", Bernstein) and the virtual tet are sums over the pieces and keep it.
 void check_round_off(const TransferErrors& errors) {
   MESSAGE("transfer: " << errors.points << " points, field " << errors.field << ", energies linear " << errors.linear_energy
                        << " corotated " << errors.corotated_energy << ", kinetic consistent " << errors.consistent_kinetic

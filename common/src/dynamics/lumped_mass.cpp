@@ -11,6 +11,23 @@ namespace kerf {
 
 namespace {
 
+// The Bernstein row sums rho int_p B_i from the Lagrange ones r_i = rho int_p N_i. On a Tet4 the
+// two bases are one. On a Tet10 B_a = N_a + (N_ab + N_ac + N_ad) / 4 and B_ab = N_ab / 2
+// (lumped_mass.hpp): each edge node keeps half its row sum and gives a quarter to each end.
+template <class Diagonal> Diagonal bernstein_row_sums(const Diagonal& r) {
+  if constexpr (Diagonal::SizeAtCompileTime == 4) {
+    return r;
+  } else {
+    if (r.size() == 4) return r;
+    Diagonal D = r;
+    for (int e = 0; e < 6; ++e) {
+      D[4 + e] = r[4 + e] / 2;
+      for (const int a : tet_edge_corners[e]) D[a] += r[4 + e] / 4;
+    }
+    return D;
+  }
+}
+
 // The diagonal D_p (n entries, kg) that `scheme` gives the piece with unit-density mass m.
 template <class Mass>
 Eigen::Matrix<double, Mass::RowsAtCompileTime, 1> piece_diagonal(const Eigen::MatrixBase<Mass>& m, double density, LumpingScheme scheme) {
@@ -18,6 +35,7 @@ Eigen::Matrix<double, Mass::RowsAtCompileTime, 1> piece_diagonal(const Eigen::Ma
   const double volume = m.sum();
   const auto n = static_cast<double>(m.rows());
   switch (scheme) {
+  case LumpingScheme::bernstein: return bernstein_row_sums<Diagonal>(density * m.rowwise().sum());
   case LumpingScheme::row_sum: return density * m.rowwise().sum();
   case LumpingScheme::hrz: return density * volume / m.diagonal().sum() * m.diagonal();
   case LumpingScheme::virtual_tet: return Diagonal::Constant(m.rows(), density * volume / n);

@@ -361,10 +361,11 @@ TimeSpec read_time(const ObjectReader& r) {
   if (time.steps < 1) t.fail("time.steps", "expected a positive integer");
   if ((time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
   if (!(time.tolerance > 0.0 && time.tolerance < 1.0)) t.fail("time.tolerance", "expected a relative residual in (0, 1)");
-  const std::string lumped_schemes[] = {"lumped", "row_sum", "hrz", "virtual_tet", "schoch_eq_81_82"};
+  const std::string lumped_schemes[] = {"lumped", "bernstein", "row_sum", "hrz", "virtual_tet", "schoch_eq_81_82"};
   const bool lumped = std::find(std::begin(lumped_schemes), std::end(lumped_schemes), time.mass) != std::end(lumped_schemes);
   if (!lumped && time.mass != "consistent")
-    t.fail("time.mass", "expected \"consistent\", \"lumped\" (per-piece \"virtual_tet\"), \"row_sum\", \"hrz\" or \"schoch_eq_81_82\", got \"" +
+    t.fail("time.mass", "expected \"consistent\", \"lumped\" (per-piece \"bernstein\"), \"row_sum\", \"hrz\", \"virtual_tet\" or "
+                        "\"schoch_eq_81_82\", got \"" +
                             time.mass + "\"");
   if (time.integrator == "central_difference" && !lumped)
     t.fail("time.mass", "the central difference is explicit: it needs a lumped (diagonal) mass");

@@ -10,8 +10,9 @@ std::optional<LumpingScheme> scene_lumping_scheme(const Scene& scene) {
   if (mass == "consistent") return std::nullopt;
   if (mass == "row_sum") return LumpingScheme::row_sum;
   if (mass == "hrz") return LumpingScheme::hrz;
+  if (mass == "virtual_tet") return LumpingScheme::virtual_tet;
   if (mass == "schoch_eq_81_82") return LumpingScheme::schoch_eq_81_82;
-  return LumpingScheme::virtual_tet; // "lumped" and "virtual_tet" (read_time accepts nothing else)
+  return LumpingScheme::bernstein; // "lumped" and "bernstein" (read_time accepts nothing else)
 }
 
 Eigen::SparseMatrix<double> scene_cut_xfem_mass(const Scene& scene, const CutXfemModel& model, const PieceRuleFunction& rule) {

@@ -1,6 +1,6 @@
 // Assignment 06 (assignments/06_newmark/README.md): the per-piece lumped mass of a cut body and
 // the body load that goes with it. This file replaces common/src/dynamics/lumped_mass.cpp in the
-// graded build; the declarations, with their full comments (the four schemes, why a tet with
+// graded build; the declarations, with their full comments (the five schemes, why a tet with
 // branch functions keeps its consistent mass), are in kerf/dynamics/lumped_mass.hpp.
 #include "kerf/dynamics/lumped_mass.hpp"
 
@@ -10,8 +10,10 @@ namespace kerf {
 
 /// The lumped mass on all 3 num_dof_nodes() DOFs (no Dirichlet elimination), symmetric.
 ///
-/// row_sum, hrz and virtual_tet lump each piece p of each tet on its own, with a diagonal D_p
-/// (n entries) computed from the piece's unit-density consistent mass m_p (cut_xfem_piece_masses):
+/// bernstein, row_sum, hrz and virtual_tet lump each piece p of each tet on its own, with a diagonal
+/// D_p (n entries) computed from the piece's unit-density consistent mass m_p (cut_xfem_piece_masses):
+///   bernstein    the row sums r_a = rho sum_b (m_p)_ab, on a Tet10 each edge node e = (a, b)
+///                keeping r_e / 2 and giving r_e / 4 to each of its corners a and b,
 ///   row_sum      D_p,aa = rho sum_b (m_p)_ab,
 ///   hrz          D_p,aa = rho V_p (m_p)_aa / trace(m_p),       V_p = sum_ab (m_p)_ab,
 ///   virtual_tet  D_p,aa = rho V_p / n,
@@ -30,7 +32,7 @@ Eigen::SparseMatrix<double> lump_cut_xfem_mass([[maybe_unused]] const CutXfemMod
 }
 
 /// The body load rho g that goes with `scheme` (3 num_dof_nodes() entries).
-/// For row_sum, hrz and virtual_tet it is sum_p T_p^T (D_p 1 kron g): each phantom node pulled by
+/// For the four piece-wise schemes it is sum_p T_p^T (D_p 1 kron g): each phantom node pulled by
 /// its own lumped mass D_p,aa g, which goes to u_i and, where enrichment k is active, to a_k; so
 /// that M_lumped a = f is solved by "every phantom node accelerates at g".
 /// In a tet with branch functions it is that tet's consistent mass times "u'' = g": slot s gets

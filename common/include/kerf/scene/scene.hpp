@@ -123,9 +123,11 @@ struct TimeSpec {
   double beta = 0.25, gamma = 0.5;          ///< Newmark parameters ("newmark" only)
   double alpha = -0.1;                      ///< HHT-alpha's alpha, in [-1/3, 0] ("hht_alpha" only)
   Eigen::Vector2d rayleigh{0.0, 0.0};       ///< damping C = alpha M + beta K
-  /// "consistent" or a lumped scheme: "lumped" (the per-piece "virtual_tet", which lets a freed
-  /// piece fall at g), "row_sum", "hrz", "schoch_eq_81_82" (dynamics/lumped_mass.hpp). The
-  /// default is "consistent", "lumped" for the central difference (which needs a diagonal mass).
+  /// "consistent" or a lumped scheme: "lumped" (the per-piece "bernstein", which gives every
+  /// piece its own mass and centre of mass and lets a freed piece fall at g), "row_sum", "hrz",
+  /// "virtual_tet" (the former "lumped": mass exact, weight at the element's centroid),
+  /// "schoch_eq_81_82" (dynamics/lumped_mass.hpp). The default is "consistent", "lumped" for the
+  /// central difference (which needs a diagonal mass).
   std::string mass = "consistent";
   /// The relative residual of each step's solve in the nonlinear Newmark step (corotational
   /// model, or moving clamps): the conjugate-gradient tolerance of its linear solves when the

@@ -14,7 +14,7 @@
 
 namespace kerf {
 
-/// The lumping scheme of "time.mass" ("lumped" is the per-piece virtual tet), or none for "consistent".
+/// The lumping scheme of "time.mass" ("lumped" is the per-piece Bernstein scheme), or none for "consistent".
 std::optional<LumpingScheme> scene_lumping_scheme(const Scene& scene);
 
 /// The mass on all 3 num_dof_nodes() DOFs: the consistent XFEM mass (cut_xfem_mass.hpp) or the
