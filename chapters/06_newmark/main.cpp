@@ -311,7 +311,7 @@ void CutDynamics::setup_nonlinear_integrator() {
   nonlinear_.dofs = dofs_;
   // CG's Jacobi scaling in the part basis (part_basis.hpp): a piece the cut freed is never
   // moved by the corrections of the body, and a thin part never shares a scale with a thick one.
-  nonlinear_.solver_basis = kerf::cut_body_preconditioner_basis(*model_, dofs_);
+  if (scene_.solver.basis == "parts") nonlinear_.solver_basis = kerf::cut_body_preconditioner_basis(*model_, dofs_);
   nonlinear_.load = [f = f_ext_](double) { return f; };
   nonlinear_.motion = [this](double t) { return kerf::scene_prescribed_motion(scene_, mesh_, model_->num_dof_nodes(), t); };
   if (corotated) {

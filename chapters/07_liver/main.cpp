@@ -1,4 +1,4 @@
-/* Kerf, chapter 7: a liver cut by a moving blade, in real time.
+/* Kerf, chapter 7: a liver cut by a moving blade while it moves (not yet in real time: see the results).
 
    Build:   cmake --preset release && cmake --build --preset release --target 07_liver
 
@@ -547,7 +547,7 @@ void LiverCut::setup_system() {
   system_.dofs = dofs_;
   // CG's Jacobi scaling in the part basis, as chapter 6's: a freed piece is never moved by the
   // corrections of the body (part_basis.hpp).
-  system_.solver_basis = kerf::cut_body_preconditioner_basis(*model_, dofs_);
+  if (scene_.solver.basis == "parts") system_.solver_basis = kerf::cut_body_preconditioner_basis(*model_, dofs_);
   system_.load = [f](double) { return f; };
   const Eigen::Index n = 3 * model_->num_dof_nodes();
   system_.motion = [n](double) {

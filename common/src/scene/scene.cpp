@@ -542,12 +542,13 @@ SolverSettings read_solver(const ObjectReader& r) {
   SolverSettings solver;
   if (!r.has("solver")) return solver;
   ObjectReader s(r.at("solver"), "solver", r.file());
-  s.allow_only({"type", "ordering", "tolerance", "max_iterations", "refresh_iterations"});
+  s.allow_only({"type", "ordering", "tolerance", "max_iterations", "refresh_iterations", "basis"});
   solver.type = s.text("type", "cholmod");
   solver.ordering = s.text("ordering", solver.ordering);
   solver.tolerance = s.number("tolerance", solver.tolerance);
   solver.max_iterations = s.integer("max_iterations", solver.max_iterations);
   solver.refresh_iterations = s.integer("refresh_iterations", solver.refresh_iterations);
+  solver.basis = s.text("basis", solver.basis);
   const auto& type = solver.type;
   if (type != "cholmod" && type != "ldlt" && type != "cg-jacobi" && type != "cg-ichol" && type != "cg-cholmod")
     s.fail("solver.type",
@@ -558,6 +559,8 @@ SolverSettings read_solver(const ObjectReader& r) {
   if (!(solver.tolerance > 0.0 && solver.tolerance < 1.0)) s.fail("solver.tolerance", "expected a number in (0, 1)");
   if (solver.max_iterations < 1) s.fail("solver.max_iterations", "expected a positive integer");
   if (solver.refresh_iterations < 1) s.fail("solver.refresh_iterations", "expected a positive integer");
+  if (solver.basis != "parts" && solver.basis != "unknowns")
+    s.fail("solver.basis", "expected \"parts\" or \"unknowns\", got \"" + solver.basis + "\"");
   return solver;
 }
 

@@ -39,34 +39,45 @@ namespace {
 
 using NodeRows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>;
 
-// The rule of phantom values for the sign enrichments (the header's comment): for each
-// enrichment of `to`, the DOF node of `from` that holds the old phantom value minus u_i, or -1.
-std::vector<int> sign_enrichment_sources(const CutXfemModel& from, const CutXfemModel& to) {
+// The rule of phantom values (the header's comment), as offsets from the old u_i: for each
+// enrichment of `to` and for each node's home part in `to`, the DOF node of `from` that holds the
+// old phantom value there minus u_i, or -1 where that is u_i itself (the old home part).
+struct PhantomSources {
+  std::vector<int> enrichment, home;
+};
+
+PhantomSources phantom_sources(const CutXfemModel& from, const CutXfemModel& to) {
   const TetMesh& mesh = to.mesh();
   const int n = mesh.nodes_per_tet();
   const SurfaceEnrichment& enrichment = to.enrichment();
   const MeshPieces& pieces = to.pieces();
-  std::vector<int> source(static_cast<std::size_t>(to.num_dof_nodes() - mesh.num_nodes()), -1);
-  std::vector<char> done(static_cast<std::size_t>(enrichment.num_enrichments()), 0);
+  PhantomSources source{std::vector<int>(static_cast<std::size_t>(to.num_dof_nodes() - mesh.num_nodes()), -1),
+                        std::vector<int>(static_cast<std::size_t>(mesh.num_nodes()), -1)};
+  std::vector<char> enrichment_done(static_cast<std::size_t>(enrichment.num_enrichments()), 0);
+  std::vector<char> home_done(static_cast<std::size_t>(mesh.num_nodes()), 0);
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    if (enrichment.active[static_cast<std::size_t>(t)].empty()) continue;
-    const int num_pieces = pieces.num_pieces(t);
-    for (int p = 0; p < num_pieces; ++p)
+    if (enrichment.active[static_cast<std::size_t>(t)].empty() || pieces.entry[static_cast<std::size_t>(t)] < 0) continue;
+    const TetPieces& tp = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
+    for (int p = 0; p < pieces.num_pieces(t); ++p) {
+      // A point strictly inside the new piece: off the new cut, so off the old one too. Every new
+      // part lies inside one old part (the cut only grows), so one piece per part suffices.
+      const TetPiece& piece = tp.pieces[static_cast<std::size_t>(p)];
+      const Eigen::Vector3d x = convex_cell_inner_point(tp.cells[static_cast<std::size_t>(piece.cells.front())]);
+      int p_old = -2;
       for (int a = 0; a < n; ++a) {
+        const int i = mesh.tets(t, a);
         const int k = enrichment.active_enrichment(pieces, t, a, p);
-        if (k < 0 || done[static_cast<std::size_t>(k)]) continue;
-        done[static_cast<std::size_t>(k)] = 1;
-        // A point strictly inside the new piece: off the new cut, so off the old one too.
-        const TetPieces& tp = pieces.tets[static_cast<std::size_t>(pieces.entry[static_cast<std::size_t>(t)])];
-        const TetPiece& piece = tp.pieces[static_cast<std::size_t>(p)];
-        const Eigen::Vector3d x = convex_cell_inner_point(tp.cells[static_cast<std::size_t>(piece.cells.front())]);
-        const int p_old = from.piece_at(t, x);
+        char& done = k >= 0 ? enrichment_done[static_cast<std::size_t>(k)] : home_done[static_cast<std::size_t>(i)];
+        if (done) continue;
+        done = 1;
+        if (p_old == -2) p_old = from.piece_at(t, x);
         if (p_old < 0) throw std::logic_error("CutStateTransfer: a piece's inner point lies outside its tet");
-        // The old phantom value at node a is q of from.phantom_node: u_i itself (then a_k = 0)
-        // or u_i + a_old (then a_k = a_old).
+        // The old phantom value at node a is q of from.phantom_node: u_i itself, or u_i + a_old.
         const int old_node = from.phantom_node(t, p_old, a);
-        if (old_node != mesh.tets(t, a)) source[static_cast<std::size_t>(k)] = old_node;
+        if (old_node == i) continue;
+        (k >= 0 ? source.enrichment[static_cast<std::size_t>(k)] : source.home[static_cast<std::size_t>(i)]) = old_node;
       }
+    }
   }
   return source;
 }
@@ -91,7 +102,31 @@ CutStateTransfer::CutStateTransfer(const CutXfemModel& from, const CutXfemModel&
     : from_dof_nodes_(from.num_dof_nodes()), to_dof_nodes_(to.num_dof_nodes()), num_nodes_(to.mesh().num_nodes()) {
   if (&from.mesh() != &to.mesh() && from.mesh().num_nodes() != to.mesh().num_nodes())
     throw std::invalid_argument("transfer_cut_state: the two models are on different meshes");
-  enrichment_source_ = sign_enrichment_sources(from, to);
+  PhantomSources sources = phantom_sources(from, to);
+  enrichment_source_ = std::move(sources.enrichment);
+  anchor_source_ = std::move(sources.home);
+  to_enrichment_node_.assign(enrichment_source_.size(), -1);
+  std::copy(to.enrichment().enrichment_node.begin(), to.enrichment().enrichment_node.end(), to_enrichment_node_.begin());
+  if (held) {
+    if (held->free_index.size() != static_cast<std::size_t>(3 * to.num_dof_nodes()))
+      throw std::invalid_argument("transfer_cut_state: the DofMap is not the new model's");
+    // The held enrichments take 0. Where one glues its part to the home part, the larger part
+    // keeps its old value: it becomes the anchor of u_i (the header's comment).
+    const SurfaceEnrichment& enrichment = to.enrichment();
+    const EnrichmentVolumes volumes = to.enrichment_volumes();
+    for (Eigen::Index i = 0; i < num_nodes_; ++i) {
+      double anchor_volume = -1.0;
+      for (int k = enrichment.first_enrichment[static_cast<std::size_t>(i)]; k < enrichment.first_enrichment[static_cast<std::size_t>(i) + 1]; ++k) {
+        if (!is_held(*held, static_cast<int>(num_nodes_) + k)) continue;
+        held_enrichments_.push_back(static_cast<int>(num_nodes_) + k);
+        if (anchor_volume < 0.0) anchor_volume = volumes.home_fraction(k) * volumes.support[static_cast<std::size_t>(k)];
+        if (volumes.enriched[static_cast<std::size_t>(k)] > anchor_volume) {
+          anchor_volume = volumes.enriched[static_cast<std::size_t>(k)];
+          anchor_source_[static_cast<std::size_t>(i)] = enrichment_source_[static_cast<std::size_t>(k)];
+        }
+      }
+    }
+  }
   if (rule == BranchStateRule::fit && (to.crack_tip() || from.crack_tip())) fit_ = make_fit(from, to, held);
   if (rule == BranchStateRule::keep_values && to.crack_tip() && from.crack_tip()) {
     const std::vector<int>& slot_to = to.crack_tip()->enrichment.branch_slot;
@@ -114,8 +149,15 @@ Eigen::VectorXd CutStateTransfer::operator()(const Eigen::VectorXd& q) const {
   if (q.size() != 3 * from_dof_nodes_) throw std::invalid_argument("transfer_cut_state: q has the wrong size");
   Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * to_dof_nodes_);
   out.head(3 * num_nodes_) = q.head(3 * num_nodes_);
-  for (std::size_t e = 0; e < enrichment_source_.size(); ++e)
-    if (const int old = enrichment_source_[e]; old >= 0) out.segment<3>(3 * (num_nodes_ + static_cast<Eigen::Index>(e))) = q.segment<3>(3 * old);
+  // The offset of each source from the old u_i (0 for the old home part).
+  const auto offset = [&](int source) -> Eigen::Vector3d { return source >= 0 ? Eigen::Vector3d(q.segment<3>(3 * source)) : Eigen::Vector3d::Zero(); };
+  for (std::size_t e = 0; e < enrichment_source_.size(); ++e) {
+    const int i = to_enrichment_node_[e];
+    const Eigen::Vector3d anchor = i >= 0 ? offset(anchor_source_[static_cast<std::size_t>(i)]) : Eigen::Vector3d::Zero();
+    out.segment<3>(3 * (num_nodes_ + static_cast<Eigen::Index>(e))) = offset(enrichment_source_[e]) - anchor;
+  }
+  for (Eigen::Index i = 0; i < num_nodes_; ++i) out.segment<3>(3 * i) += offset(anchor_source_[static_cast<std::size_t>(i)]);
+  for (const int e : held_enrichments_) out.segment<3>(3 * e).setZero();
   for (const auto& [target, source] : kept_branch_nodes_) out.segment<12>(3 * target) = q.segment<12>(3 * source);
   if (!fit_) return out;
   // M c = B_old q_old - B_fixed p (the Fit's comment); the unknowns' own entries of `out` are

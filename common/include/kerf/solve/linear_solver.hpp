@@ -32,6 +32,10 @@ struct SolverSettings {
   /// CHOLMOD's fill-reducing ordering: "nested-dissection" (the default), "metis", "amd" or
   /// "cholmod" (CHOLMOD's own choice); see kerf::CholmodSolver.
   std::string ordering = "nested-dissection";
+  /// cg-jacobi on a cut body (chapters 6 and 7): "parts", Jacobi's scaling in the part basis with
+  /// each independent piece its own system (dynamics/part_basis.hpp, the default), or
+  /// "unknowns", in the unknowns [u; a] themselves. Other solvers and uncut bodies ignore it.
+  std::string basis = "parts";
 };
 
 /// A basis for "cg-jacobi" to precondition in: x = S w, S square and invertible (the unknowns'

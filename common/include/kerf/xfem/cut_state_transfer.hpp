@@ -20,7 +20,16 @@
 ///
 /// which is 0 for a part that was the home part before (a tet the blade has just split: the new
 /// enrichment starts at zero, as the notes say) and the old a for a part that already was a far
-/// part. One piece per enrichment suffices: the old field takes the same phantom value on all of
+/// part. The standard DOF u_i is itself a phantom value, the one on the node's home part; the
+/// home part of a node that lies on a cut can switch when a second cut passes through the node
+/// (the parts are numbered anew), so u_i takes the old field's value on the new home part too:
+/// u_i = w_i(home), a_k = w_i(C_k) - w_i(home).
+///
+/// Held enrichments (the new DofMap's: a gripped node's, or eq. 22's slivers) are 0 in the step,
+/// so their part moves with u_i: a jump on that part, which the rule cannot avoid and books (the
+/// energies before and after differ by it). Which of the two glued parts keeps its value: the
+/// larger. A far sliver keeps the home part's value and jumps itself; a home sliver (eq. 22 holds
+/// the node's largest part then) jumps to that part's value, instead of dragging it along. One piece per enrichment suffices: the old field takes the same phantom value on all of
 /// C, because C lay inside one old part. The map is linear, so displacement, velocity and
 /// acceleration go through it alike, and the kinetic and elastic energies are unchanged: the same
 /// field, integrated by rules exact for it (asserted in tests/chapter_07).
@@ -73,8 +82,11 @@ public:
   /// @param to   the model of the grown cut
   /// @throws std::invalid_argument if the models are on meshes with different node counts
   /// @param rule what the branch DOFs take
-  /// @param held the new model's DofMap, or nullptr: the fit leaves the DOF nodes it prescribes
-  ///             as the rule of phantom values gives them
+  /// @param held the new model's DofMap, or nullptr. With it, the enrichments it holds (a gripped
+  ///             node's, a sliver's: eq. 22) take 0, the value they will have in the step, and
+  ///             where that glues a part to the home part the lighter of the two moves (the
+  ///             file's comment); the fit leaves them as they are. Without it every enrichment
+  ///             takes the rule's value.
   CutStateTransfer(const CutXfemModel& from, const CutXfemModel& to, BranchStateRule rule = BranchStateRule::fit,
                    const DofMap* held = nullptr);
   CutStateTransfer(CutStateTransfer&&) noexcept;
@@ -95,9 +107,16 @@ private:
   // The fit near the front, assembled and factorised; null if no DOF acts near a front.
   static std::unique_ptr<Fit> make_fit(const CutXfemModel& from, const CutXfemModel& to, const DofMap* held);
   Eigen::Index from_dof_nodes_ = 0, to_dof_nodes_ = 0, num_nodes_ = 0;
-  // Per enrichment DOF node e of `to` (index e - N): the DOF node of `from` whose value it takes
-  // (the old phantom node, a_k = q_old - u_i), or -1 for 0.
-  std::vector<int> enrichment_source_;
+  // The rule of phantom values, in offsets from the old u_i: per enrichment DOF node e of `to`
+  // (index e - N), the DOF node of `from` holding the old phantom value on its part minus the
+  // old u_i (an old enrichment), or -1 for 0 (the old home part); per node i of `to`, the same
+  // for the part the new u_i stands for, its anchor (its home part, or the held part that
+  // outweighs it: the file's comment).
+  std::vector<int> enrichment_source_, anchor_source_;
+  // Per enrichment DOF node of `to` (index e - N): its node, or -1 for a branch DOF node.
+  std::vector<int> to_enrichment_node_;
+  // The enrichment DOF nodes the new DofMap holds, which take 0 (their part moves with u_i).
+  std::vector<int> held_enrichments_;
   // keep_values: for each node branch enriched in both models, the first DOF node of its four
   // functions in `to` and in `from` (branch_dof_node).
   std::vector<std::pair<Eigen::Index, Eigen::Index>> kept_branch_nodes_;
