@@ -180,6 +180,8 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "output": {"every": 0}})", "output.every"},
       {"{" + m + R"(, "solver": {"type": "umfpack"}})", "solver.type"},
       {"{" + m + R"(, "solver": {"ordering": "colamd"}})", "solver.ordering"},
+      {"{" + m + R"(, "solver": {"basis": "nodes"}})", "solver.basis"},
+      {"{" + m + R"(, "solver": {"basis": 1}})", "solver.basis"},
       {"[1, 2, 3]", "(top level)"},
   };
   for (const auto& c : cases) {
