@@ -6,6 +6,7 @@
      05_crack_tip
      05_crack_tip --scene examples/05_beam_partial_cut_gravity_tet4.json --probes examples/05_partial_cut_probes.csv --probes-out output/partial_cut_probes.csv
      05_crack_tip --scene examples/05_beam_curved_front_tet4.json --moments-out output/curved_front_moments.csv --out output/curved_front
+     05_crack_tip --scene examples/05_williams_slab_tet4.json --out output/williams_slab
 
    Description: the beam of chapters 1-4 (0.03 x 0.06 x 0.2 m, E = 300 kPa, nu = 0.35), Tet4
    elements, clamped at z = 0, is cut half-way through its depth by chapter 3's rectangle
@@ -49,6 +50,7 @@
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/scene/scene_quadrature.hpp"
 #include "kerf/scene/scene_quasi_static.hpp"
+#include "kerf/scene/scene_williams.hpp"
 #include "kerf/scene/scene_xfem_dofs.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
 #include "kerf/xfem/cut_xfem_loads.hpp"
@@ -59,6 +61,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -198,6 +201,15 @@ void CrackTip::apply_cut() {
 // the tets the front crosses are integrated by sub-tets collapsed onto the front, exact in r
 // (front_quadrature.hpp), and the other tets with branch nodes by graded Gauss rules; the
 // scene's "quadrature" rule still integrates every other split tet, and goes to --moments-out.
+//
+// The Dirichlet conditions are chapter 4's, and one more kind: a `"williams"` entry prescribes
+// Williams's near-front field of the cut's front, the benchmark of this chapter's convergence
+// study. A node where the crack reaches the boundary lies beside two faces of the crack, on which
+// the field has two values, and one value per node (a clamp, a displacement file) would hold
+// its enrichments at 0 and shut the crack's mouth. So every DOF of the entry's nodes takes the
+// field's XFEM interpolant: u_v the field on the node's own side, a_v^k the field on the far
+// part minus that, b_{v,l} the field's coefficients in the branch functions
+// (scene_williams.hpp). That is why the DOF map is given the fronts.
 void CrackTip::setup_system() {
   rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
   if (options_.moments_out) {
@@ -206,7 +218,7 @@ void CrackTip::setup_system() {
   }
   model_ = std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, pieces_, crack_tip_->sign_enrichment(), rule_,
                                                 crack_tip_->tip_functions());
-  dofs_ = kerf::scene_cut_xfem_dof_map(scene_, *model_, &std::cerr);
+  dofs_ = kerf::scene_cut_xfem_dof_map(scene_, *model_, crack_tip_->fronts(), &std::cerr);
   report("system: " + std::to_string(dofs_.num_free) + " unknowns (" + std::to_string(3 * crack_tip_->sign_enrichment().num_enrichments()) +
          " of them sign-enriched, " + std::to_string(12 * crack_tip_->num_branch_nodes()) + " branch)");
 }
@@ -233,9 +245,7 @@ void CrackTip::solve() {
   }
   const kerf::QuasiStaticSettings settings = kerf::scene_quasi_static_settings(scene_);
   const auto path = [this](double lambda) {
-    Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(3 * model_->num_dof_nodes());
-    prescribed.head(3 * mesh_.num_nodes()) = kerf::scene_prescribed_displacements(scene_, mesh_, lambda);
-    return prescribed;
+    return kerf::scene_cut_prescribed_displacements(scene_, *model_, crack_tip_->fronts(), lambda);
   };
   result_ = kerf::solve_quasi_static(*model_, dofs_, f_ext_, settings, path);
   u_ = result_.u;
@@ -280,6 +290,16 @@ void CrackTip::output_results() const {
   if (options_.probes_in) {
     kerf::sample_cut_xfem_probes(*options_.probes_in, *options_.probes_out, *model_, u_, &std::cerr);
     report("wrote " + options_.probes_out->string());
+  }
+  // A scene that prescribes Williams's field (a "williams" Dirichlet entry, scene_williams.hpp)
+  // is the convergence study's benchmark when the field is given on the whole boundary: the
+  // field is then the exact solution, and we print how far the solution is from it, relative to
+  // the field's own norms (cut_xfem_field_error.hpp).
+  if (const std::optional<kerf::SceneWilliamsError> williams = kerf::scene_williams_error(scene_, *model_, crack_tip_->fronts(), u_)) {
+    std::ostringstream line;
+    line << "williams: error against dirichlet[" << williams->entry << "]'s field: relative L2 " << williams->error.relative_L2()
+         << ", relative energy " << williams->error.relative_energy();
+    report(line.str());
   }
 }
 
@@ -328,7 +348,8 @@ int main(int argc, char** argv) {
       [](const kerf::CommandLine& options) {
         const kerf::Scene scene = options.scene ? kerf::read_scene_file(*options.scene)
                                                 : kerf::parse_scene(chapter05::demo_scene, "demo scene", ".");
-        kerf::require_features(scene, kerf::SceneFeatures{.corotational = true, .cuts = true, .cut_quadrature = true, .crack_tip = true});
+        kerf::require_features(scene, kerf::SceneFeatures{.corotational = true, .cuts = true, .cut_quadrature = true, .crack_tip = true,
+                                                        .williams = true});
         chapter05::CrackTip problem(scene, options);
         problem.run();
       },

@@ -229,3 +229,56 @@ TEST_CASE("the crack_tip field of chapter 5: branch by default, a radius only wh
 TEST_CASE("a scene file that does not exist is an InputError naming it") {
   CHECK_THROWS_WITH_AS(kerf::read_scene_file("no/such/scene.json"), doctest::Contains("no/such/scene.json"), kerf::InputError);
 }
+
+TEST_CASE("the williams field of a Dirichlet entry: K in Pa sqrt(m), 0 unless given; bad input names the field; chapter 5 alone runs it") {
+  const std::string m = box_mesh;
+  const auto entry = [&](const std::string& condition) {
+    return "{" + m + R"(, "dirichlet": [{"region": {"nodes": [0]}}, {"region": {"nodes": [1, 2]}, )" + condition + "}]}";
+  };
+  const kerf::Scene mixed = kerf::parse_scene(entry(R"("williams": {"K_I": 1e4, "K_III": -250})"), "williams.json", "/data");
+  REQUIRE(mixed.dirichlet.size() == 2);
+  CHECK_FALSE(mixed.dirichlet[0].williams);
+  CHECK(mixed.dirichlet[1].williams);
+  CHECK(mixed.dirichlet[1].williams_K.K_I == 1e4);
+  CHECK(mixed.dirichlet[1].williams_K.K_II == 0.0); // not given
+  CHECK(mixed.dirichlet[1].williams_K.K_III == -250.0); // tearing either way is meaningful
+  const kerf::Scene sliding = kerf::parse_scene(entry(R"("williams": {"K_II": -3})"), "williams.json", "/data");
+  CHECK(sliding.dirichlet[1].williams_K.K_I == 0.0);
+  CHECK(sliding.dirichlet[1].williams_K.K_II == -3.0);
+
+  struct Case {
+    std::string condition, field;
+  };
+  const Case cases[] = {
+      {R"("williams": {})", "dirichlet[1].williams"},                                   // no K at all
+      {R"("williams": 1e4)", "dirichlet[1].williams"},                                  // not an object
+      {R"("williams": [1e4, 0, 0])", "dirichlet[1].williams"},
+      {R"("williams": {"K_I": "1e4"})", "dirichlet[1].williams.K_I"},                   // wrong type
+      {R"("williams": {"K_I": null})", "dirichlet[1].williams.K_I"},
+      {R"("williams": {"K_II": true})", "dirichlet[1].williams.K_II"},
+      {R"("williams": {"K_III": [1]})", "dirichlet[1].williams.K_III"},
+      {R"("williams": {"K_I": -1})", "dirichlet[1].williams.K_I"},                      // the faces would interpenetrate
+      {R"("williams": {"K_I": -1e-300})", "dirichlet[1].williams.K_I"},
+      {R"("williams": {"K_I": 1e400})", "JSON"},                                        // not a double
+      {R"("williams": {"K_1": 1e4})", "dirichlet[1].williams.K_1"},                     // typo: not silently 0
+      {R"("williams": {"K_I": 1e4, "front": [0, 0, 0]})", "dirichlet[1].williams.front"}, // the front comes from the cut
+      {R"("williams": {"K_I": 1e4}, "displacement": [0, 0, 0])", "dirichlet[1].williams"},
+      {R"("williams": {"K_I": 1e4}, "rotation": {"axis": [0, 0, 1], "degrees": 5})", "dirichlet[1].williams"},
+      {R"("williams": {"K_I": 1e4}, "displacement_file": "u.csv")", "dirichlet[1].williams"},
+      {R"("williams": {"K_I": 1e4}, "ramp_time": -1)", "dirichlet[1].ramp_time"},
+      {R"("williams": {"K_I": 1e4}, "ramp_time": 0.5)", "dirichlet[1].ramp_time"},      // static: nothing moves
+  };
+  for (const auto& c : cases) {
+    const std::string text = entry(c.condition);
+    CAPTURE(text);
+    const std::string message = error_of(text);
+    REQUIRE_FALSE(message.empty());
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.rfind("scene.json: " + c.field + ": ", 0) == 0);
+  }
+  // Only chapter 5's static program prescribes it on the cut body's enrichments.
+  const kerf::SceneFeatures chapter_07{.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true, .crack_tip = true,
+                                       .organ = true};
+  CHECK_THROWS_WITH_AS(kerf::require_features(mixed, chapter_07), doctest::Contains("williams.json: dirichlet[1].williams: "), kerf::InputError);
+  CHECK_NOTHROW(kerf::require_features(mixed, {.cuts = true, .cut_quadrature = true, .crack_tip = true, .williams = true}));
+}

@@ -223,17 +223,42 @@ LinearMaterial read_material(const ObjectReader& r) {
   return material;
 }
 
+/// "williams": the stress intensity factors of Williams's field, each in Pa sqrt(m) and 0 when
+/// not given, at least one given. A negative K_I would push the crack's faces through each other
+/// (the field's opening 2 A_I (kappa + 1) sqrt(r) < 0), which no open cut does: refused.
+StressIntensityFactors read_williams(const ObjectReader& d) {
+  ObjectReader w(d.at("williams"), d.field("williams"), d.file());
+  w.allow_only({"K_I", "K_II", "K_III"});
+  if (!w.has("K_I") && !w.has("K_II") && !w.has("K_III"))
+    w.fail(w.path(), "expected at least one of \"K_I\", \"K_II\", \"K_III\" (stress intensity factors, Pa sqrt(m))");
+  StressIntensityFactors K;
+  K.K_I = w.number("K_I", 0.0);
+  K.K_II = w.number("K_II", 0.0);
+  K.K_III = w.number("K_III", 0.0);
+  if (K.K_I < 0.0)
+    w.fail(w.field("K_I"), "expected a number >= 0 (Pa sqrt(m)): a negative K_I closes the crack through its own faces");
+  return K;
+}
+
 /// "dirichlet": regions with a displacement, and optionally a rotation about an axis, or with a
 /// displacement file (a path relative to the scene), read here so that a malformed file is
-/// reported before any mesh is made.
+/// reported before any mesh is made, or with Williams's field ("williams").
 std::vector<DirichletSpec> read_dirichlet(const ObjectReader& r, const std::filesystem::path& base) {
   return read_list<DirichletSpec>(r, "dirichlet", [&](const json& entry, const std::string& path) {
     ObjectReader d(entry, path, r.file());
-    d.allow_only({"region", "displacement", "rotation", "displacement_file", "ramp_time"});
+    d.allow_only({"region", "displacement", "rotation", "displacement_file", "williams", "ramp_time"});
     DirichletSpec spec;
     spec.region = read_region(d.at("region"), path + ".region", r.file());
     spec.ramp_time = d.number("ramp_time", 0.0);
     if (!(spec.ramp_time >= 0.0)) d.fail(path + ".ramp_time", "expected a non-negative time (s)");
+    if (d.has("williams")) {
+      for (const char* other : {"displacement", "rotation", "displacement_file"})
+        if (d.has(other))
+          d.fail(d.field("williams"), std::string("expected either \"williams\" or \"") + other + "\", not both");
+      spec.williams = true;
+      spec.williams_K = read_williams(d);
+      return spec;
+    }
     if (d.has("displacement_file")) {
       if (d.has("displacement") || d.has("rotation"))
         d.fail(d.field("displacement_file"), "expected either \"displacement_file\" or \"displacement\" and \"rotation\", not both");
@@ -650,6 +675,10 @@ void require_features(const Scene& scene, const SceneFeatures& taught) {
                          "triangle-mesh cuts are taught from chapter 4 on (04_cut_quadrature)");
   if (scene.crack_tip.given && !taught.crack_tip)
     throw InputError(file, "crack_tip", "crack-tip enrichment is taught from chapter 5 on (05_crack_tip)");
+  for (std::size_t i = 0; i < scene.dirichlet.size(); ++i)
+    if (scene.dirichlet[i].williams && !taught.williams)
+      throw InputError(file, "dirichlet[" + std::to_string(i) + "].williams",
+                       "Williams's field is prescribed by chapter 5's static program only (05_crack_tip)");
   if (!taught.organ) {
     if (scene.mesh.is_liver) throw InputError(file, "mesh.liver", "the liver mesh is made from chapter 7 on (07_liver)");
     if (scene.blade.given) throw InputError(file, "blade", "a moving blade cuts from chapter 7 on (07_liver)");

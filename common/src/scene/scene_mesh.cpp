@@ -10,6 +10,7 @@
 #include "kerf/mesh/tet10_from_tet4.hpp"
 
 #include <filesystem>
+#include <stdexcept>
 
 namespace kerf {
 
@@ -54,25 +55,32 @@ std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, con
   return nodes;
 }
 
+std::vector<DirichletNodes> scene_dirichlet_entry_nodes(const Scene& scene, const TetMesh& mesh, std::size_t i, double lambda) {
+  const DirichletSpec& spec = scene.dirichlet[i];
+  if (spec.williams)
+    throw std::logic_error("scene_dirichlet_entry_nodes: dirichlet[" + std::to_string(i) +
+                           "] is Williams's field, which acts on the cut body's enrichments too (scene_cut_dirichlet_nodes)");
+  const std::vector<int> nodes = scene_region_nodes(scene, mesh, spec.region, "dirichlet[" + std::to_string(i) + "].region");
+  std::vector<DirichletNodes> conditions;
+  if (spec.from_file) {
+    const std::string entry = "dirichlet[" + std::to_string(i) + "] of " + scene.source.string();
+    const std::vector<Eigen::Vector3d> values = displacements_from_file(spec.file, mesh, nodes, entry);
+    for (std::size_t k = 0; k < nodes.size(); ++k) conditions.push_back({{nodes[k]}, lambda * values[k]});
+    return conditions;
+  }
+  if (!spec.has_rotation) return {{nodes, lambda * spec.displacement}};
+  DirichletSpec partial = spec;
+  partial.degrees *= lambda;
+  partial.displacement *= lambda;
+  for (int v : nodes) conditions.push_back({{v}, partial.displacement_at(mesh.nodes.row(v).transpose())});
+  return conditions;
+}
+
 std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh, double lambda) {
   std::vector<DirichletNodes> conditions;
   for (std::size_t i = 0; i < scene.dirichlet.size(); ++i) {
-    const DirichletSpec& spec = scene.dirichlet[i];
-    const std::vector<int> nodes = scene_region_nodes(scene, mesh, spec.region, "dirichlet[" + std::to_string(i) + "].region");
-    if (spec.from_file) {
-      const std::string entry = "dirichlet[" + std::to_string(i) + "] of " + scene.source.string();
-      const std::vector<Eigen::Vector3d> values = displacements_from_file(spec.file, mesh, nodes, entry);
-      for (std::size_t k = 0; k < nodes.size(); ++k) conditions.push_back({{nodes[k]}, lambda * values[k]});
-      continue;
-    }
-    if (!spec.has_rotation) {
-      conditions.push_back({nodes, lambda * spec.displacement});
-      continue;
-    }
-    DirichletSpec partial = spec;
-    partial.degrees *= lambda;
-    partial.displacement *= lambda;
-    for (int v : nodes) conditions.push_back({{v}, partial.displacement_at(mesh.nodes.row(v).transpose())});
+    std::vector<DirichletNodes> entry = scene_dirichlet_entry_nodes(scene, mesh, i, lambda);
+    conditions.insert(conditions.end(), entry.begin(), entry.end());
   }
   return conditions;
 }

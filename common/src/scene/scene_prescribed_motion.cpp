@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace kerf {
@@ -25,6 +26,9 @@ PrescribedMotion scene_prescribed_motion(const Scene& scene, const TetMesh& mesh
                           Eigen::VectorXd::Zero(3 * num_dof_nodes)};
   for (std::size_t i = 0; i < scene.dirichlet.size(); ++i) {
     const DirichletSpec& spec = scene.dirichlet[i];
+    if (spec.williams)
+      throw std::logic_error("scene_prescribed_motion: dirichlet[" + std::to_string(i) +
+                             "] is Williams's field, which chapter 5's static program alone prescribes");
     const std::vector<int> nodes = scene_region_nodes(scene, mesh, spec.region, "dirichlet[" + std::to_string(i) + "].region");
     // lambda(t) and its time derivatives.
     double lambda = 1.0, dlambda = 0.0, ddlambda = 0.0;

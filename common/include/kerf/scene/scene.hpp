@@ -4,6 +4,7 @@
 
 #include "kerf/cut/blade_path.hpp"
 #include "kerf/fem/linear_material.hpp"
+#include "kerf/fracture/williams_field.hpp"
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/scene/displacement_file.hpp"
 #include "kerf/solve/linear_solver.hpp"
@@ -33,6 +34,8 @@ struct MeshSpec {
 /// u = displacement on the nodes of region, plus, if `has_rotation`, the rigid rotation by
 /// `degrees` about `axis` through `center`: u(X) = (Q - I)(X - center) + displacement.
 /// Or, if `from_file`, each node of the region takes its row of a displacement file.
+/// Or, if `williams`, Williams's near-front field of the scene's one crack front, on every
+/// side of the cut (scene_williams.hpp: the nodes' enrichments take it too, chapter 5).
 struct DirichletSpec {
   NodeRegion region;
   Eigen::Vector3d displacement{0, 0, 0}; ///< m
@@ -42,6 +45,8 @@ struct DirichletSpec {
   Eigen::Vector3d center{0, 0, 0};       ///< a point on the axis (m)
   bool from_file = false;                ///< "displacement_file" given (read with the scene)
   DisplacementFile file;                 ///< its rows, when from_file
+  bool williams = false;                 ///< "williams" given: the field of williams_K, plane strain
+  StressIntensityFactors williams_K;     ///< Pa sqrt(m); K_I >= 0, each 0 when not given
   /// Dynamics (chapter 6): > 0 moves the nodes from rest to the displacement (and angle, or the
   /// file's values) along a smooth ramp over this many seconds (scene_prescribed_motion.hpp); 0
   /// holds them there from t = 0.
@@ -207,6 +212,9 @@ struct SceneFeatures {
   bool cut_quadrature = false; ///< triangle-mesh cuts, several cuts, cut Tet10, the "quadrature" field (chapter 4)
   bool crack_tip = false;      ///< the "crack_tip" field (chapter 5)
   bool organ = false;          ///< the "liver" mesh, the "blade" and "render" fields (chapter 7)
+  /// "williams" Dirichlet entries: chapter 5's static program prescribes them on the cut body's
+  /// [u; a; b] (scene_williams.hpp); the dynamic chapters do not.
+  bool williams = false;
 };
 
 /// Throws InputError if `scene` needs a method that is not in `taught`.

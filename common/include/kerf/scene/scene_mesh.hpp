@@ -27,7 +27,12 @@ std::vector<int> scene_region_nodes(const Scene& scene, const TetMesh& mesh, con
 /// Regions are checked as scene_region_nodes does.
 /// With load factor `lambda` (quasi-static ramps), a rotation turns by lambda times its angle and
 /// every translation is scaled by lambda.
+/// @throws std::logic_error for a "williams" entry, which prescribes the cut body's enrichments
+///         too: a cut body's program asks scene_cut_dirichlet_nodes (scene_xfem_dofs.hpp)
 std::vector<DirichletNodes> scene_dirichlet_nodes(const Scene& scene, const TetMesh& mesh, double lambda = 1.0);
+
+/// The conditions of the scene's Dirichlet entry i alone (what scene_dirichlet_nodes gives for it).
+std::vector<DirichletNodes> scene_dirichlet_entry_nodes(const Scene& scene, const TetMesh& mesh, std::size_t i, double lambda = 1.0);
 
 /// The prescribed displacements (3#V, zero elsewhere) at load factor lambda: the path along
 /// which a quasi-static solve ramps the scene's Dirichlet conditions (turns by their angle).
