@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
           kerf::implicit_surface_mesh(kerf::liver_phi, kerf::liver_centre(), kerf::liver_bounding_radius(), kerf::implicit_surface_sizing(0.003));
       const kerf::VisualSurface visual(mesh, s);
       start = kerf_measure::clock::now();
-      const std::vector<int> keep = kerf::untorn_triangles(s, plane);
+      const std::vector<int> keep = kerf::untorn_triangles(s, kerf::CutSurfaces({plane}));
       const kerf::TriangleSurface moved = kerf::keep_triangles(visual.deform(kerf::xfem_visual_displacement(model, u)), keep);
       const double frame_seconds = seconds_since(start);
       kerf::PictureSettings settings;

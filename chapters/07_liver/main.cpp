@@ -465,15 +465,7 @@ void LiverCut::apply_cut() {
   rebuild_times_.transfer = lap();
   // The visual triangles the cut tears change only with the cut: found here, once per change,
   // not at every frame.
-  if (view_ && cuts_->num_surfaces() > 0) {
-    untorn_ = kerf::untorn_triangles(visual_->reference(), cuts_->surface(0));
-    for (int s = 1; s < cuts_->num_surfaces(); ++s) {
-      const std::vector<int> more = kerf::untorn_triangles(visual_->reference(), cuts_->surface(s));
-      std::vector<int> both;
-      std::set_intersection(untorn_.begin(), untorn_.end(), more.begin(), more.end(), std::back_inserter(both));
-      untorn_ = std::move(both);
-    }
-  }
+  if (view_ && cuts_->num_surfaces() > 0) untorn_ = kerf::untorn_triangles(visual_->reference(), *cuts_);
   setup_system();
   if (rebuild && rebuilds_csv_.is_open()) {
     const RebuildTimes& r = rebuild_times_;

@@ -176,7 +176,7 @@ TEST_CASE("across an opened XFEM cut each vertex takes its side's displacement; 
   CHECK(worst < 1e-14);
 
   // Kept: triangles with all corners on one side; dropped: those with corners on both.
-  const std::vector<int> keep = kerf::untorn_triangles(sphere, cut);
+  const std::vector<int> keep = kerf::untorn_triangles(sphere, kerf::CutSurfaces({cut}));
   std::vector<bool> kept(static_cast<std::size_t>(sphere.num_triangles()), false);
   for (const int f : keep) kept[static_cast<std::size_t>(f)] = true;
   int wrong = 0, dropped = 0;

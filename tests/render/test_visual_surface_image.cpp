@@ -111,7 +111,7 @@ TEST_CASE("a visual sphere in a box opened by an XFEM cut shows the background t
       [&](const Eigen::Vector3d& x) { return (x - centre).norm() - 0.4; }, centre, 0.49, kerf::implicit_surface_sizing(0.03));
   const kerf::VisualSurface visual(body.mesh, sphere);
   const kerf::TriangleSurface moved = kerf::keep_triangles(visual.deform(kerf::xfem_visual_displacement(body.model, u)),
-                                                           kerf::untorn_triangles(sphere, cut));
+                                                           kerf::untorn_triangles(sphere, kerf::CutSurfaces({cut})));
   const auto surface = kerf::triangle_surface_polydata(moved, kerf::Shading::smooth);
   const vtkSmartPointer<vtkImageData> image = kerf::render_surface_image(*surface, render_test::front_view(kerf::surface_label_name));
   kerf::write_png(kerf_test::fresh_dir("visual_surface_opened") / "opened.png", *image);

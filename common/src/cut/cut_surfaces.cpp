@@ -62,6 +62,28 @@ CutSurfaces& CutSurfaces::operator=(CutSurfaces&&) noexcept = default;
 
 Eigen::Index CutSurfaces::num_triangles() const { return static_cast<Eigen::Index>(tree_->triangles.size()); }
 
+std::vector<CutTriangle> CutSurfaces::triangles_near_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+  std::vector<CutTriangle> found;
+  if (tree_->triangles.empty()) return found;
+  const CGAL::Bbox_3 box(std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]), std::max(p[0], q[0]),
+                         std::max(p[1], q[1]), std::max(p[2], q[2]));
+  std::vector<Primitive::Id> candidates;
+  tree_->tree.all_intersected_primitives(box, std::back_inserter(candidates));
+  std::sort(candidates.begin(), candidates.end());
+  for (const Primitive::Id& id : candidates) found.push_back(cut_triangle(static_cast<std::size_t>(id - tree_->triangles.cbegin())));
+  return found;
+}
+
+CutTriangle CutSurfaces::cut_triangle(std::size_t k) const {
+  const auto [s, f] = tree_->owner[k];
+  const TriangleSurface& surface = surfaces_[static_cast<std::size_t>(s)];
+  CutTriangle t;
+  for (int c = 0; c < 3; ++c) t.corners[static_cast<std::size_t>(c)] = surface.vertices.row(surface.triangles(f, c)).transpose();
+  t.surface = s;
+  t.triangle = f;
+  return t;
+}
+
 std::vector<CutTriangle> CutSurfaces::triangles_meeting_tet(const Eigen::Matrix<double, 4, 3>& X) const {
   std::vector<CutTriangle> found;
   if (tree_->triangles.empty()) return found;
@@ -73,14 +95,7 @@ std::vector<CutTriangle> CutSurfaces::triangles_meeting_tet(const Eigen::Matrix<
   std::sort(candidates.begin(), candidates.end());
   for (const Primitive::Id& id : candidates) {
     if (!CGAL::do_intersect(tet, *id)) continue;
-    const std::size_t k = static_cast<std::size_t>(id - tree_->triangles.cbegin());
-    const auto [s, f] = tree_->owner[k];
-    const TriangleSurface& surface = surfaces_[static_cast<std::size_t>(s)];
-    CutTriangle t;
-    for (int c = 0; c < 3; ++c) t.corners[static_cast<std::size_t>(c)] = surface.vertices.row(surface.triangles(f, c)).transpose();
-    t.surface = s;
-    t.triangle = f;
-    found.push_back(t);
+    found.push_back(cut_triangle(static_cast<std::size_t>(id - tree_->triangles.cbegin())));
   }
   return found;
 }

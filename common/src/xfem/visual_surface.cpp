@@ -124,17 +124,12 @@ TriangleSurface VisualSurface::deform(const VisualDisplacement& u) const {
   return moved;
 }
 
-std::vector<int> untorn_triangles(const TriangleSurface& visual, const TriangleSurface& cut) {
-  Eigen::AlignedBox3d cut_box;
-  for (Eigen::Index i = 0; i < cut.num_vertices(); ++i) cut_box.extend(row(cut.vertices, i));
+std::vector<int> untorn_triangles(const TriangleSurface& visual, const CutSurfaces& cuts) {
+  // Each edge asks the cuts' tree for the triangles near it (their boxes meet its box): the few
+  // the exact test then decides, instead of every triangle of a cut that may be long.
   const auto crosses_cut = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
-    Eigen::AlignedBox3d edge_box(p);
-    edge_box.extend(q);
-    if (!edge_box.intersects(cut_box)) return false;
-    for (Eigen::Index k = 0; k < cut.num_triangles(); ++k)
-      if (segment_crosses_triangle(p, q, row(cut.vertices, cut.triangles(k, 0)), row(cut.vertices, cut.triangles(k, 1)),
-                                   row(cut.vertices, cut.triangles(k, 2))))
-        return true;
+    for (const CutTriangle& t : cuts.triangles_near_segment(p, q))
+      if (segment_crosses_triangle(p, q, t.corners[0], t.corners[1], t.corners[2])) return true;
     return false;
   };
   std::vector<int> keep;

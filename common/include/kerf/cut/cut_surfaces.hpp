@@ -43,9 +43,15 @@ public:
   /// The triangles that meet the closed tet with corners X (rows): inside it, crossing it, or
   /// touching its boundary, in the order of (surface, triangle).
   std::vector<CutTriangle> triangles_meeting_tet(const Eigen::Matrix<double, 4, 3>& X) const;
+  /// The triangles whose bounding boxes meet the segment p-q's bounding box, in the order of
+  /// (surface, triangle): the candidates of a segment's crossing, found through the tree in
+  /// O(log n + found) instead of a test of every triangle; the caller decides which it crosses.
+  std::vector<CutTriangle> triangles_near_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const;
 
 private:
   struct Tree;
+  // Triangle k of the tree (all surfaces' triangles in order), as a CutTriangle.
+  CutTriangle cut_triangle(std::size_t k) const;
   std::vector<TriangleSurface> surfaces_;
   std::unique_ptr<Tree> tree_;
 };

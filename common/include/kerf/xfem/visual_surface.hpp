@@ -25,6 +25,7 @@
 /// themselves are not drawn (Koschier section 7 builds them from the cut surface: an extension).
 #pragma once
 
+#include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/mesh/tet_mesh.hpp"
 #include "kerf/mesh/triangle_surface.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
@@ -78,11 +79,13 @@ private:
 };
 
 /// The triangles of `visual` (reference configuration) of which no edge crosses a triangle of
-/// `cut`: the triangles that would stretch across the opened cut are the others. A crossing is an
+/// any of `cuts`: the triangles that would stretch across an opened cut are the others. Each
+/// edge tests only the cut triangles near it (CutSurfaces::triangles_near_segment), so a rebuild
+/// costs O(visual edges log(cut triangles)), not their product. A crossing is an
 /// edge whose ends lie strictly on opposite sides of a cut triangle's plane and passes through it
 /// (its edges included).
 /// @return the indices of the triangles kept, increasing
-std::vector<int> untorn_triangles(const TriangleSurface& visual, const TriangleSurface& cut);
+std::vector<int> untorn_triangles(const TriangleSurface& visual, const CutSurfaces& cuts);
 
 /// `surface` with only the triangles `keep` (same vertices): for a moved visual surface and
 /// untorn_triangles of its reference.
