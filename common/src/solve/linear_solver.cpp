@@ -52,7 +52,8 @@ private:
 ///
 /// With a basis (PreconditionerBasis) it is the same algorithm on S^T A S w = S^T b with Jacobi's
 /// scaling D = diag(S^T A S), run on each of the basis's components with its own step lengths,
-/// x = S w accumulated as it goes (so no S^-1 is needed for the starting guess): Saad's alg. 9.1
+/// the correction summed in the basis and added as S dw (so no S^-1 is needed for the starting
+/// guess): Saad's alg. 9.1
 /// with the preconditioner S D^-1 S^T, once per independent system. Its stopping test is each
 /// component's |r_w| <= tolerance |b_w| in that basis, which implies the whole system's.
 class JacobiCg final : public LinearSolver {
@@ -67,6 +68,13 @@ public:
       throw std::invalid_argument("cg-jacobi: the basis's components must label every column");
     S_ = basis.S;
     S_.makeCompressed();
+    // S = I + E with E small for the part basis (a few entries per enriched node): the products
+    // with S and S^T cost |E| beyond a copy, not |S|.
+    Eigen::SparseMatrix<double> identity(n, n);
+    identity.setIdentity();
+    E_ = S_ - identity;
+    E_.prune(0.0);
+    E_transpose_ = E_.transpose();
     component_ = basis.component.empty() ? std::vector<int>(static_cast<std::size_t>(n), 0) : basis.component;
     num_components_ = 0;
     for (const int c : component_) {
@@ -156,14 +164,20 @@ private:
   bool solve_in_basis(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     const Eigen::Index n = A_.size(), padded = A_.padded_size();
     const auto C = static_cast<std::size_t>(num_components_);
+    const auto S_times = [&](const Eigen::VectorXd& w) -> Eigen::VectorXd { return w + E_ * w; };
+    const auto S_transpose_times = [&](const auto& v) -> Eigen::VectorXd { return v + E_transpose_ * v; };
     Eigen::VectorXd x_padded = Eigen::VectorXd::Zero(padded), q = Eigen::VectorXd::Zero(padded), Aq(padded);
     x_padded.head(n) = x;
     A_.multiply(x_padded, Aq);
-    Eigen::VectorXd r_w = S_.transpose() * (b - Aq.head(n));
-    const Eigen::VectorXd b_w = S_.transpose() * b;
-    // Per component: |b_w|^2, |r_w|^2, r_w . z_w, p_w . (S^T A S p_w), and the step lengths.
+    Eigen::VectorXd r_w = S_transpose_times(b - Aq.head(n));
+    const Eigen::VectorXd b_w = S_transpose_times(b);
+    // Per component: a dot product u . v over its unknowns (one component: the whole vector).
     const auto per_component = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
       std::vector<double> sum(C, 0.0);
+      if (C == 1) {
+        sum[0] = u.dot(v);
+        return sum;
+      }
       for (Eigen::Index j = 0; j < n; ++j) sum[static_cast<std::size_t>(component_[static_cast<std::size_t>(j)])] += u[j] * v[j];
       return sum;
     };
@@ -175,30 +189,31 @@ private:
       active[c] = residual_norm2[c] >= threshold[c];
     }
     const auto any_active = [&] { return std::find(active.begin(), active.end(), 1) != active.end(); };
-    // The step scalars of one iteration, spread over the unknowns of each component (0 on the
-    // components that have converged, which then stay where they are).
-    const auto spread = [&](const std::vector<double>& value) {
+    // v scaled by each component's step scalar (0 on the components that have converged, which
+    // then stay where they are).
+    const auto scaled = [&](const std::vector<double>& value, const Eigen::VectorXd& v) -> Eigen::VectorXd {
+      if (C == 1) return (active[0] ? value[0] : 0.0) * v;
       Eigen::VectorXd result(n);
       for (Eigen::Index j = 0; j < n; ++j) {
         const auto c = static_cast<std::size_t>(component_[static_cast<std::size_t>(j)]);
-        result[j] = active[c] ? value[c] : 0.0;
+        result[j] = active[c] ? value[c] * v[j] : 0.0;
       }
       return result;
     };
     iterations_ = 0;
     if (any_active()) {
-      Eigen::VectorXd z_w = inverse_diagonal_.cwiseProduct(r_w), p_w = z_w;
+      // The correction is summed in the basis and mapped to the unknowns once, at the end.
+      Eigen::VectorXd z_w = inverse_diagonal_.cwiseProduct(r_w), p_w = z_w, dx_w = Eigen::VectorXd::Zero(n);
       std::vector<double> rz = per_component(r_w, z_w), alpha(C), beta(C);
       int i = 0;
       while (i < max_iterations_) {
-        q.head(n) = S_ * p_w;
+        q.head(n) = S_times(p_w);
         A_.multiply(q, Aq);
-        const Eigen::VectorXd Ap_w = S_.transpose() * Aq.head(n);
+        const Eigen::VectorXd Ap_w = S_transpose_times(Aq.head(n));
         const std::vector<double> pAp = per_component(p_w, Ap_w);
         for (std::size_t c = 0; c < C; ++c) alpha[c] = active[c] ? rz[c] / pAp[c] : 0.0;
-        const Eigen::VectorXd alpha_spread = spread(alpha);
-        x_padded.head(n) += S_ * alpha_spread.cwiseProduct(p_w);
-        r_w -= alpha_spread.cwiseProduct(Ap_w);
+        dx_w += scaled(alpha, p_w);
+        r_w -= scaled(alpha, Ap_w);
         residual_norm2 = per_component(r_w, r_w);
         for (std::size_t c = 0; c < C; ++c) active[c] = active[c] && residual_norm2[c] >= threshold[c];
         if (!any_active()) break;
@@ -206,10 +221,11 @@ private:
         const std::vector<double> rz_new = per_component(r_w, z_w);
         for (std::size_t c = 0; c < C; ++c) beta[c] = active[c] ? rz_new[c] / rz[c] : 0.0;
         rz = rz_new;
-        p_w = z_w + spread(beta).cwiseProduct(p_w);
+        p_w = z_w + scaled(beta, p_w);
         ++i;
       }
       iterations_ = i;
+      x_padded.head(n) += S_times(dx_w);
     }
     double b_total = 0.0, r_total = 0.0;
     for (std::size_t c = 0; c < C; ++c) {
@@ -232,12 +248,18 @@ private:
   }
 
   // The diagonal of S^T A S: s_j^T A s_j = sum over the entries a, b of column j of
-  // s_a s_b A(r_a, r_b), with A read in its upper triangle only (the step's matrices may store
-  // no more).
+  // s_a s_b A(r_a, r_b). A column of one entry (most of them) takes A's diagonal; the others look
+  // A up in its upper triangle only (the step's matrices may store no more).
   Eigen::VectorXd diagonal_in_basis(const Eigen::SparseMatrix<double>& A) const {
+    const Eigen::VectorXd A_diagonal = A_.diagonal();
     Eigen::VectorXd d = Eigen::VectorXd::Zero(S_.cols());
     for (Eigen::Index j = 0; j < S_.cols(); ++j) {
       const Eigen::Index begin = S_.outerIndexPtr()[j], end = S_.outerIndexPtr()[j + 1];
+      if (end - begin == 1) {
+        const double s = S_.valuePtr()[begin];
+        d[j] = s * s * A_diagonal[S_.innerIndexPtr()[begin]];
+        continue;
+      }
       for (Eigen::Index a = begin; a < end; ++a)
         for (Eigen::Index c = begin; c < end; ++c) {
           const Eigen::Index row = S_.innerIndexPtr()[a], column = S_.innerIndexPtr()[c];
@@ -249,6 +271,7 @@ private:
 
   SymmetricBlockMatrix A_;
   Eigen::SparseMatrix<double> S_; // the preconditioner's basis; empty: the unknowns themselves
+  Eigen::SparseMatrix<double> E_, E_transpose_; // S - I and its transpose
   std::vector<int> component_;    // per column of S_, its component
   int num_components_ = 0;
   Eigen::VectorXd inverse_diagonal_;
