@@ -716,7 +716,11 @@ void LiverCut::do_timestep(int step, bool cut_next, const kerf::BladeEdge* next,
   } catch (const kerf::InputError&) {
     throw; // names its file and field already
   } catch (const std::exception& error) {
-    throw std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(t_before) + " s): " + error.what());
+    // One line: the step and the time it spans, then what failed (a failed solve names its
+    // matrix, its solver and what can make the matrix so).
+    std::ostringstream where;
+    where << "step " << step << " (t = " << t_before << " s to " << step * scene_.time.dt << " s): " << error.what();
+    throw std::runtime_error(where.str());
   }
   energy_scale_ += std::abs(account_.external_work - work_before);
   check_state(step);

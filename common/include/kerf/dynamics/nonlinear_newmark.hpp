@@ -55,7 +55,10 @@ enum class RotationUpdate {
   /// for a linear body; for the corotated one it lags the rotations by a step.
   frozen,
   /// Newton's method on the step's equations with the consistent tangent, until the relative
-  /// residual |r_f| / max(|r_f^0|, |f_f|, |(M a_n)_f|) is at most the tolerance.
+  /// residual |r_f| / max(|r_f^0|, |f_f|, |(M a_n)_f|) is at most the tolerance. An iteration
+  /// whose matrix the solver finds not positive definite (the consistent tangent of a squeezed
+  /// element that little else holds) solves with the frozen step's matrix instead, whose warped
+  /// tangent is positive semi-definite; the next iteration tries the consistent one again.
   newton,
 };
 
@@ -73,6 +76,7 @@ struct NonlinearStepReport {
   int iterations = 0;             ///< linear solves
   double relative_residual = 0.0; ///< newton: the last one; frozen: 0 (not measured)
   bool converged = true;          ///< newton: whether it met the tolerance
+  int warped_fallbacks = 0;       ///< newton: iterations that solved with the frozen step's matrix instead
   int solver_iterations = 0;      ///< iterations of the linear solver summed over the step's solves (1 per direct solve)
   /// Processor time (std::clock: not inflated by other programs on a shared machine) spent
   /// building the solves' matrices A_ff, and factorising and solving: the benchmark's phases.
@@ -86,9 +90,10 @@ struct NonlinearStepReport {
 /// Newmark in acceleration form (as newmark.hpp) on all DOFs: the free ones predicted and
 /// corrected by Newmark's updates, the prescribed ones set to the motion at t_{n+1}. The
 /// matrix of each solve is M_ff + gamma dt C_ff + beta dt^2 K_ff (K the step's tangent), its
-/// pattern analysed once. With C = alpha M + beta K_R that matrix is c_M M_ff + c_K K_ff, which
-/// the step writes straight into a pattern found once (StepMatrix below): no sparse sums or
-/// products per step, only one pass over the stored values.
+/// pattern analysed once (and again around a Newton iteration that falls back). With
+/// C = alpha M + beta K_R that matrix is c_M M_ff + c_K K_ff, which the step writes straight
+/// into a pattern found once (StepMatrix below): no sparse sums or products per step, only one
+/// pass over the stored values.
 ///
 /// Damping is Rayleigh's on the current rotated stiffness, C = alpha M + beta K_R(u_n) (notes
 /// 6.3, as SOFA and Vega do; the papers do not say), rebuilt every step and held through the
