@@ -125,12 +125,12 @@ public:
     system_.motion = [this](double t) { return kerf::scene_prescribed_motion(scene_, mesh_, model_->num_dof_nodes(), t); };
     const kerf::RotationMethod rotation = kerf::scene_quasi_static_settings(scene_).rotation;
     system_.internal_force = [this, rotation](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                                              Eigen::SparseMatrix<double>* K) {
+                                              const Eigen::SparseMatrix<double>** K) {
       const double start = processor_seconds();
       Eigen::VectorXd unused = Eigen::VectorXd::Zero(u.size());
       if (K) assembler_->set_zero();
       model_->assemble(u, rotation, tangent, f_int, K ? assembler_.get() : nullptr, K ? &unused : nullptr);
-      if (K) *K = assembler_->matrix();
+      if (K) *K = &assembler_->matrix();
       assembly_seconds += processor_seconds() - start;
     };
     system_.elastic_energy = [this, rotation](const Eigen::VectorXd& u) {

@@ -88,18 +88,18 @@ struct CutDynamicBody {
     };
     if (corotated) {
       system.internal_force = [this](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                                     Eigen::SparseMatrix<double>* Kt) {
+                                     const Eigen::SparseMatrix<double>** Kt) {
         Eigen::VectorXd scratch = Eigen::VectorXd::Zero(u.size());
         if (Kt) assembler.set_zero();
         model.assemble(u, kerf::RotationMethod::automatic, tangent, f_int, Kt ? &assembler : nullptr, Kt ? &scratch : nullptr);
-        if (Kt) *Kt = assembler.matrix();
+        if (Kt) *Kt = &assembler.matrix();
       };
       system.elastic_energy = [this](const Eigen::VectorXd& u) { return model.energy(u, true); };
     } else {
       system.internal_force = [this](const Eigen::VectorXd& u, kerf::CorotationalTangent, Eigen::VectorXd& f_int,
-                                     Eigen::SparseMatrix<double>* Kt) {
+                                     const Eigen::SparseMatrix<double>** Kt) {
         f_int = K * u;
-        if (Kt) *Kt = K;
+        if (Kt) *Kt = &K;
       };
       system.elastic_energy = [this](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
     }

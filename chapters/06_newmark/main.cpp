@@ -316,18 +316,18 @@ void CutDynamics::setup_nonlinear_integrator() {
   nonlinear_.motion = [this](double t) { return kerf::scene_prescribed_motion(scene_, mesh_, model_->num_dof_nodes(), t); };
   if (corotated) {
     nonlinear_.internal_force = [this, rotation](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                                                 Eigen::SparseMatrix<double>* K) {
+                                                 const Eigen::SparseMatrix<double>** K) {
       Eigen::VectorXd unused = Eigen::VectorXd::Zero(u.size());
       if (K) tangent_assembler_->set_zero();
       model_->assemble(u, rotation, tangent, f_int, K ? tangent_assembler_.get() : nullptr, K ? &unused : nullptr);
-      if (K) *K = tangent_assembler_->matrix();
+      if (K) *K = &tangent_assembler_->matrix();
     };
     nonlinear_.elastic_energy = [this, rotation](const Eigen::VectorXd& u) { return model_->energy(u, true, rotation); };
   } else {
     nonlinear_.internal_force = [this](const Eigen::VectorXd& u, kerf::CorotationalTangent, Eigen::VectorXd& f_int,
-                                       Eigen::SparseMatrix<double>* K) {
+                                       const Eigen::SparseMatrix<double>** K) {
       f_int = K_ * u;
-      if (K) *K = K_;
+      if (K) *K = &K_;
     };
     nonlinear_.elastic_energy = [this](const Eigen::VectorXd& u) { return 0.5 * u.dot(K_ * u); };
   }

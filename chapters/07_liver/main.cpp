@@ -548,11 +548,11 @@ void LiverCut::setup_system() {
     return still;
   };
   system_.internal_force = [this, rotation, corotated](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                                                      Eigen::SparseMatrix<double>* K) {
+                                                      const Eigen::SparseMatrix<double>** K) {
     if (corotated && tangent == kerf::CorotationalTangent::warped) {
       assemble_at(u, rotation);
       f_int = assembled_.f_int;
-      if (K) *K = tangent_assembler_->matrix();
+      if (K) *K = &tangent_assembler_->matrix();
       return;
     }
     // Newton's consistent tangent, or the linear body: assembled each time asked.
@@ -566,7 +566,7 @@ void LiverCut::setup_system() {
       model_->assemble_linear_stiffness(*tangent_assembler_, unused);
       f_int = tangent_assembler_->matrix() * u;
     }
-    if (K) *K = tangent_assembler_->matrix();
+    if (K) *K = &tangent_assembler_->matrix();
     step_times_.assemble += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   system_.elastic_energy = [this, rotation, corotated](const Eigen::VectorXd& u) {

@@ -20,9 +20,9 @@ inline std::vector<int> nodes_at_z0(const kerf::TetMesh& mesh) {
 
 // f_int = K u with tangent K, whatever tangent is asked for (K kept by reference).
 inline kerf::InternalForce linear_force(const Eigen::SparseMatrix<double>& K) {
-  return [&K](const Eigen::VectorXd& u, kerf::CorotationalTangent, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* Kt) {
+  return [&K](const Eigen::VectorXd& u, kerf::CorotationalTangent, Eigen::VectorXd& f_int, const Eigen::SparseMatrix<double>** Kt) {
     f_int = K * u;
-    if (Kt) *Kt = K;
+    if (Kt) *Kt = &K;
   };
 }
 

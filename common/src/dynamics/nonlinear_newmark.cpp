@@ -31,6 +31,7 @@ NonlinearNewmarkIntegrator::NonlinearNewmarkIntegrator(const NonlinearDynamicSys
   P_.resize(dofs.num_free, static_cast<Eigen::Index>(dofs.free_index.size()));
   P_.setFromTriplets(entries.begin(), entries.end());
   Pt_ = P_.transpose();
+  prescribed_mask_ = Eigen::VectorXd::Ones(P_.cols()) - Pt_ * Eigen::VectorXd::Ones(P_.rows());
   if (system.solver_basis.S.size() > 0) {
     if (system.solver_basis.S.rows() != dofs.num_free)
       throw std::invalid_argument("NonlinearNewmarkIntegrator: the solver's basis is not of the free DOFs' size");
@@ -151,11 +152,11 @@ DynamicState NonlinearNewmarkIntegrator::initial_state(const Eigen::VectorXd& u0
   state.u = combine(P_ * u0, motion.u);
   state.v = combine(P_ * v0, motion.v);
   Eigen::VectorXd f_int;
-  Eigen::SparseMatrix<double> K;
+  const Eigen::SparseMatrix<double>* K = nullptr;
   system_.internal_force(state.u, CorotationalTangent::warped, f_int, &K);
   // M_ff a_f = (f - M a_c - C v - f_int)_f, a_c the motion's acceleration.
   const Eigen::VectorXd a_c = combine(Eigen::VectorXd::Zero(P_.rows()), motion.a);
-  const Eigen::VectorXd rhs = P_ * (system_.load(t0) - system_.M * a_c - damping_force(K, state.v) - f_int);
+  const Eigen::VectorXd rhs = P_ * (system_.load(t0) - system_.M * a_c - damping_force(*K, state.v) - f_int);
   Eigen::VectorXd a_f;
   solve(free_block(system_.M), rhs, a_f);
   analysed_ = false; // the mass alone may have a smaller pattern than the step's matrix
@@ -185,20 +186,30 @@ NonlinearStepReport NonlinearNewmarkIntegrator::open_step(DynamicState& state) {
   const double t_next = state.t + dt;
   const PrescribedMotion motion = system_.motion(t_next);
 
-  // The step's start: f_int(u_n), the warped K_R(u_n), and the damping built on it.
+  // The step's start: f_int(u_n), the warped K_R(u_n), and the damping built on it. The frozen
+  // step reads K_R where the system keeps it (InternalForce); Newton asks for tangents again, which
+  // would overwrite it, so there K_R is copied once.
   Eigen::VectorXd f_int_start;
-  Eigen::SparseMatrix<double> K_start;
-  system_.internal_force(state.u, CorotationalTangent::warped, f_int_start, &K_start);
+  const Eigen::SparseMatrix<double>* K_start_kept = nullptr;
+  system_.internal_force(state.u, CorotationalTangent::warped, f_int_start, &K_start_kept);
+  Eigen::SparseMatrix<double> K_start_copy;
+  if (settings_.update == RotationUpdate::newton) K_start_copy = *K_start_kept;
+  const Eigen::SparseMatrix<double>& K_start = settings_.update == RotationUpdate::newton ? K_start_copy : *K_start_kept;
   const auto C_times = [&](const Eigen::VectorXd& v) { return damping_force(K_start, v); };
+  const Eigen::VectorXd C_v_start = C_times(state.v), M_a_start = M * state.a;
+  // The load at the step's start was the last step's at its end.
+  const Eigen::VectorXd f_start = load_value_.size() > 0 && load_time_ == state.t ? load_value_ : system_.load(state.t);
 
   // Newmark's predictor; the free DOFs then move with their acceleration, the prescribed ones as told.
   const NewmarkPrediction predicted = newmark_predict(state.u, state.v, state.a, dt, settings_.newmark);
   const Eigen::VectorXd f_next = system_.load(t_next);
+  load_time_ = t_next;
+  load_value_ = f_next;
   Eigen::VectorXd a_f = P_ * state.a;
   DynamicState next;
   next.t = t_next;
   Eigen::VectorXd f_int, residual, C_v_next;
-  Eigen::SparseMatrix<double> K;
+  const Eigen::SparseMatrix<double>* K = nullptr;
   const auto evaluate = [&] {
     next.a = combine(a_f, motion.a);
     next.u = combine(P_ * (predicted.u + (beta * dt * dt) * next.a), motion.u);
@@ -214,7 +225,7 @@ NonlinearStepReport NonlinearNewmarkIntegrator::open_step(DynamicState& state) {
 
   NonlinearStepReport report;
   evaluate();
-  const double reference = std::max({(P_ * residual).norm(), (P_ * f_next).norm(), (P_ * (M * state.a)).norm()});
+  const double reference = std::max({(P_ * residual).norm(), (P_ * f_next).norm(), (P_ * M_a_start).norm()});
   for (;;) {
     const Eigen::VectorXd r_f = P_ * residual;
     if (settings_.update == RotationUpdate::newton) {
@@ -236,7 +247,7 @@ NonlinearStepReport NonlinearNewmarkIntegrator::open_step(DynamicState& state) {
       newton_matrix = free_block(c_M * M + (gamma * dt * system_.rayleigh_beta) * K_start + (beta * dt * dt) * tangent);
       return newton_matrix;
     };
-    const Eigen::SparseMatrix<double>& A_ff = matrix_with(newton ? K : K_start);
+    const Eigen::SparseMatrix<double>& A_ff = matrix_with(newton ? *K : K_start);
     const std::clock_t solve_start = std::clock();
     // The first solve starts from the change of acceleration the last step made (the motion
     // extrapolated linearly in a); CG then needs fewer iterations to reach its tolerance
@@ -290,15 +301,11 @@ NonlinearStepReport NonlinearNewmarkIntegrator::open_step(DynamicState& state) {
 
   // The energy of the step on all DOFs. The reactions r = M a + C v + f_int - f at both ends,
   // with the step's own C and f_int, on the prescribed DOFs only.
-  const Eigen::VectorXd f_start = system_.load(state.t);
   const Eigen::VectorXd du = next.u - state.u;
-  const Eigen::VectorXd free_mask = Pt_ * Eigen::VectorXd::Ones(P_.rows());
-  const Eigen::VectorXd prescribed_mask = Eigen::VectorXd::Ones(du.size()) - free_mask;
   // C is linear: C v_bar = (C v_n + C v_{n+1}) / 2; C v_{n+1} is the one the residual used.
-  const Eigen::VectorXd C_v_start = C_times(state.v);
-  const Eigen::VectorXd r_start = M * state.a + C_v_start + f_int_start - f_start;
+  const Eigen::VectorXd r_start = M_a_start + C_v_start + f_int_start - f_start;
   const Eigen::VectorXd r_next = M * next.a + C_v_next + f_int - f_next;
-  report.energy.external_work = du.dot(0.5 * (f_start + f_next)) + du.cwiseProduct(prescribed_mask).dot(0.5 * (r_start + r_next));
+  report.energy.external_work = du.dot(0.5 * (f_start + f_next)) + du.cwiseProduct(prescribed_mask_).dot(0.5 * (r_start + r_next));
   report.energy.damping = du.dot(0.5 * (C_v_start + C_v_next));
   // The balance without the end state's kinetic and strain energies, which close_step subtracts.
   report.energy.numerical = report.energy.external_work - report.energy.damping + 0.5 * state.v.dot(M * state.v) + elastic_energy(state.u);

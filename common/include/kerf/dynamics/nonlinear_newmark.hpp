@@ -29,8 +29,12 @@ struct PrescribedMotion {
 /// linear body returns K u and K whatever `tangent` says. The warped tangent is symmetric (so is
 /// the linear K): the step's products with it read its upper triangle only, half the memory
 /// traffic of the full matrix (chapter 7's results).
+///
+/// The tangent is handed out, not copied: *K points at a matrix the system keeps (its
+/// assembler's), valid until the next call of internal_force or elastic_energy. A step of 10k
+/// tets would otherwise copy some 0.5 M entries and their indices once more every step.
 using InternalForce = std::function<void(const Eigen::VectorXd& u, CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                                         Eigen::SparseMatrix<double>* K)>;
+                                         const Eigen::SparseMatrix<double>** K)>;
 
 /// M a + C v + f_int(u) = f(t) + r(t) on all DOFs, r the reactions, non-zero on the prescribed DOFs only.
 struct NonlinearDynamicSystem {
@@ -157,6 +161,9 @@ private:
   double dt_;
   NonlinearNewmarkSettings settings_;
   Eigen::SparseMatrix<double> P_, Pt_; // picks the free DOFs: A_ff = P A P^T
+  Eigen::VectorXd prescribed_mask_;     // 1 on the prescribed DOFs, 0 on the free ones (all DOFs)
+  double load_time_ = 0.0;              // the last load asked for, at load_time_ (empty: none yet)
+  Eigen::VectorXd load_value_;
   std::unique_ptr<LinearSolver> solver_;
   bool analysed_ = false;
   Eigen::SparseMatrix<double> A_ff_;                 // the step's matrix, pattern fixed
