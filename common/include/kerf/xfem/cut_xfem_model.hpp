@@ -1,21 +1,45 @@
 /// @file cut_xfem_model.hpp
-/// @brief Tet4 and Tet10 XFEM with triangle-mesh cuts: every piece of a cut tet integrated as its own "phantom" element,
-///        linear and corotational, with a rotation per quadrature point (Paper 000 eqs. 31-40 on the pieces).
+/// @brief Tet4 and Tet10 XFEM with triangle-mesh cuts: every piece of a cut tet integrated as its own "phantom"
+///        element, linear and corotational, with a rotation per quadrature point (Schoch et al. 2013, eqs. 31-40 on
+///        the pieces).
+///
+/// The class is one model; its code is split by idea, one file each, so that a reader can stop
+/// where the chapter they study ends:
+///
+/// - phantom_piece.hpp: a piece as the model integrates it, its phantom element's slots and its
+///   rule's points (PhantomPiece);
+/// - cut_xfem_model.cpp: the constructors and build(), the steps of building a model; the slots
+///   of each tet (which DOF node each slot is, which slot each phantom node takes its enrichment
+///   from); the DOF map and the linear solve;
+/// - cut_xfem_model_rules.cpp: the points of every tet, whole tets by their own rule, cut tets by
+///   the piece rule, pieces kept from the model before (chapter 7's rebuild); the volumes the
+///   rules see;
+/// - cut_xfem_model_assembly.cpp: forces, tangents and energies, linear and corotated, and the
+///   gravity load;
+/// - cut_xfem_model_field.cpp: the field at a point (displacement_at, functions_at, piece_at),
+///   the slots' functions at the rules' points (for_each_slot_value: chapter 6's masses), the
+///   phantom mesh;
+/// - branch_tets.hpp, branch_tets.cpp: chapter 5, the tets with branch functions (BranchTets):
+///   the functions, their rules, the stiffness and the rotation per piece.
+///
+/// A reader of chapter 4 can skip branch_tets.*: the model's files ask BranchTets::contains(t)
+/// before they use it, and without crack-tip functions it is false in every tet.
 #pragma once
 
 #include "kerf/corotation/quasi_static_model.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/fem/linear_material.hpp"
-#include "kerf/quadrature/front_quadrature.hpp"
 #include "kerf/quadrature/piece_quadrature_rule.hpp"
 #include "kerf/solve/linear_solver.hpp"
-#include "kerf/xfem/branch_enrichment.hpp"
+#include "kerf/xfem/branch_tets.hpp"
 #include "kerf/xfem/enrichment_volumes.hpp"
+#include "kerf/xfem/phantom_piece.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <span>
@@ -25,39 +49,10 @@
 namespace kerf {
 
 /// The degree a piece's rule needs for the stiffness and the body force together. On one piece
-/// every enrichment is constant (notes 4.4), so B^T C B has degree 0 on a Tet4 and 2 on a Tet10,
-/// and N b (b constant) degree 1 and 2: one rule of the larger degree serves both, 1 for a Tet4
-/// and 2 for a Tet10. (The mass N^T N needs 2 and 4: cut_xfem_mass.hpp asks for its own.)
+/// every enrichment is constant, so B^T C B has degree 0 on a Tet4 and 2 on a Tet10, and N b
+/// (b constant) degree 1 and 2: one rule of the larger degree serves both, 1 for a Tet4 and 2
+/// for a Tet10. (The mass N^T N needs 2 and 4: cut_xfem_mass.hpp asks for its own.)
 inline int stiffness_and_load_degree(int order) { return order == 1 ? 1 : 2; }
-
-/// How the tets with branch-enriched nodes are integrated (chapter 5): the branch functions are
-/// no polynomials, and their gradients grow like 1 / sqrt(r) at the front (notes 5.5).
-enum class FrontRule : signed char {
-  collapsed,       ///< sub-tets collapsed onto the front, exact in r (front_quadrature.hpp)
-  refined_subtets, ///< Gauss rules on the sub-tets, each refined once into 8 (gauss_piece_rules.hpp)
-};
-
-/// Chapter 5's crack-tip enrichment, as the model takes it: which nodes carry the four branch
-/// functions (branch_enrichment.hpp; its `sign` is the SurfaceEnrichment the model is given),
-/// the fronts they are measured from, and the rules of the tets they act in.
-struct CrackTipFunctions {
-  const BranchEnrichment& enrichment; ///< kept by reference
-  const CrackFronts& fronts;          ///< kept by reference
-  FrontRule front_rule = FrontRule::collapsed;
-  /// Points per direction of each collapsed sub-tet of a tet the front crosses (n^3 per
-  /// sub-tet); with refined_subtets, the Gauss degree 2 n - 1 on sub-tets refined once. 0: the
-  /// default, 4 on a Tet4 and 6 on a Tet10, whose integrands have two degrees more (measured in
-  /// tests/chapter_05/test_crack_tip_model.cpp: a Tet10's exact quadratic field to 3e-5 with 4, 6e-9 with 6).
-  int front_points = 0;
-  /// The Gauss degree on the other tets with branch nodes (the sub-tets of their pieces, or of
-  /// the whole tet, graded towards the front: near_front_graded_rule): the functions are smooth
-  /// there, but no polynomials, and steep close to the front.
-  int blending_degree = 6;
-  int blending_depth = 3; ///< how often a sub-tet nearer the front than its size may be refined
-  /// How often the collapsed rule halves a face near the front's line at most
-  /// (front_collapsed_rule's grading, 0 to 12).
-  int front_grading = default_front_grading;
-};
 
 /// A Tet4 or Tet10 mesh cut by triangle-mesh cuts, enriched on the one-ring.
 ///
@@ -80,30 +75,14 @@ struct CrackTipFunctions {
 /// one rotation (the weights' sum is all that matters); a Tet10 piece needs a rule of degree 2.
 /// Tets that no enrichment reaches are chapter 1's and 2's elements, integrated with their own
 /// rules (a tet that is cut, but whose nodes the rule of surface_enrichment.hpp leaves
-/// unenriched, is continuous across the cut: the cut cannot open there, Koschier section 8).
+/// unenriched, is continuous across the cut: the cut cannot open there, Koschier et al. 2017,
+/// section 8).
 ///
 /// Crack-tip functions (chapter 5). Given CrackTipFunctions, the unknowns grow by twelve per
 /// branch node, [u; a; b] with b_{i,l} (l = 0..3) after the a's, DOF node N + M + 4 k + l for
-/// the corner in branch slot k, and the field by
-///
-///   sum_{v branch} sum_l (lambda_v F_l - I_h(lambda_v F_l)) b_{v,l}   (Paulus eq. 3, shifted)
-///
-/// with lambda_v the corner's linear hat and I_h the element's nodal interpolant: on a Tet4
-/// N_v (F_l - F_l(x_v)), Paulus's functions shifted; on a Tet10 the same space, still zero at
-/// every node (branch_enrichment.hpp: why linear hats, not the Tet10's own functions).
-///
-/// on every tet that holds a branch node. Those functions are not constant on a piece, so the
-/// phantom element alone no longer describes such a tet: at each quadrature point the model
-/// adds the branch functions' gradients to the phantom element's, and integrates the tet by its
-/// front or blending rule (FrontRule). The branch nodes have no sign enrichments
-/// (BranchEnrichment::sign): a node is never both (Paulus section 3.3). With Fries's blending
-/// correction F_l is R F_l throughout, R the ramp of branch_enrichment.hpp, and every corner of a
-/// blending tet has the four functions; the ramp nodes among them keep their sign enrichments.
-///
-/// Corotation of a tet with branch functions (issue 10, item 7): one rotation per piece, that of
-/// the piece's mean deformation gradient, with the branch coefficients turned like the sign
-/// ones (corotated_piece.hpp says why not one per point: the branch gradients are singular at
-/// the front). The same on Tet4 and Tet10 meshes; every other tet keeps its rotation per point.
+/// the corner in branch slot k. Those functions are not constant on a piece: the tets that hold
+/// a branch node add their gradients to the phantom element's at every point, are integrated
+/// by a front or blending rule, and turn with one rotation per piece (branch_tets.hpp).
 class CutXfemModel : public QuasiStaticModel {
 public:
   /// @param mesh       Tet4 or Tet10 mesh, straight-edged (kept by reference)
@@ -114,7 +93,8 @@ public:
   /// @param tip        chapter 5's branch functions, or nullptr (kept by reference); `enrichment`
   ///                   must then be tip->enrichment.sign
   CutXfemModel(const TetMesh& mesh, const LinearMaterial& material, const MeshPieces& pieces,
-               const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule, const CrackTipFunctions* tip = nullptr);
+               const SurfaceEnrichment& enrichment, const PieceRuleFunction& rule,
+               const CrackTipFunctions* tip = nullptr);
 
   /// The model of the same mesh, material and rule after the cut has grown, integrated anew only
   /// where the cut changed (chapter 7 rebuilds it whenever the blade crosses a tet).
@@ -137,7 +117,8 @@ public:
   }
   const TetMatrix& assembly_slots() const override { return slots_; }
   CorotationStatistics assemble(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
-                                Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free) const override;
+                                Eigen::VectorXd& f_int, SparseAssembler* assembler,
+                                Eigen::VectorXd* rhs_free) const override;
   double position_force_norm() const override { return position_force_norm_; }
 
   /// The linear XFEM stiffness K^X added into `assembler`, lifting into rhs_free.
@@ -157,8 +138,9 @@ public:
   /// are assemble()'s to the bit; the energy is energy()'s to round-off (it is the same sum,
   /// 1/2 d^T K_q d instead of the strain density that energy() evaluates).
   /// @returns the strain energy W(u) (J)
-  double assemble_with_energy(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                              SparseAssembler* assembler, Eigen::VectorXd* rhs_free, CorotationStatistics* stats = nullptr) const;
+  double assemble_with_energy(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                              Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                              CorotationStatistics* stats = nullptr) const;
   /// The body-force load sum_p T_p^T int_p N^T rho g (3 num_dof_nodes()).
   Eigen::VectorXd gravity_load(double density, const Eigen::Vector3d& g) const;
   /// The displacement at x (m) in tet t, on the piece that holds x (one above the cut, if x lies
@@ -197,10 +179,11 @@ public:
   void for_each_slot_value(Eigen::Index t, const std::function<void(int, double, const Eigen::VectorXd&)>& visit) const;
   /// for_each_slot_value with each slot's gradient too: visit(p, w, g, G), G one row per slot
   /// (m^-1), from what the model stored for its rules (nothing is evaluated again).
-  void for_each_slot_gradient(Eigen::Index t,
-                              const std::function<void(int, double, const Eigen::VectorXd&, const Eigen::MatrixX3d&)>& visit) const;
+  void for_each_slot_gradient(
+      Eigen::Index t,
+      const std::function<void(int, double, const Eigen::VectorXd&, const Eigen::MatrixX3d&)>& visit) const;
   /// Whether tet t holds a branch-enriched node (its field has the branch functions).
-  bool has_branch_functions(Eigen::Index t) const { return first_branch_slot_[static_cast<std::size_t>(t)] >= 0; }
+  bool has_branch_functions(Eigen::Index t) const { return branch_.contains(t); }
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
   Eigen::MatrixX3d phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const;
   /// The piece of tet t that holds x (one above the cut if x lies on it; 0 for a tet integrated
@@ -245,62 +228,47 @@ public:
   /// is harmless where the rule is exact for the integrand (the linear stiffness, the loads),
   /// but the corotated tangent at a point, R K_q R^T, is not a polynomial: with negative weights
   /// the sum over a piece need not be positive semi-definite, and Newton's matrix can lose
-  /// definiteness (notes 4.9, item 11).
+  /// definiteness.
   Eigen::Index num_negative_weights() const;
 
 private:
-  // One quadrature point of a piece: the physical shape gradients and values there and the weight.
-  // Fixed at the Tet10's size, a Tet4 uses the first 4 rows: no allocation per point.
-  struct Point {
-    Eigen::Matrix<double, 10, 3> G = Eigen::Matrix<double, 10, 3>::Zero(); // physical gradients, n rows used
-    Eigen::Matrix<double, 10, 1> N = Eigen::Matrix<double, 10, 1>::Zero(); // shape values, n used
-    double weight = 0.0;                                                    // m^3
+  // Every tet integrated whole by its own rule, with the square of its position force |K_e X_e|:
+  // a property of the mesh, shared by the models of a growing cut.
+  struct WholeTets {
+    std::vector<PhantomPiece> pieces;
+    std::vector<double> position_force_squared;
   };
-  // One piece of a split tet: which element slot each node's phantom value takes its enrichment
-  // from (-1: none), and its points.
-  struct Piece {
-    std::vector<int> enrichment_slot; // n entries: slot index in the element row (>= n), or -1
-    std::vector<Point> points;
-    // In a tet with branch nodes: per point (rows), the values of the tet's branch functions
-    // N_a (F_l - F_l(x_a)) (columns, in the order of its branch slots), and their gradients
-    // (3 columns each). Empty elsewhere.
-    Eigen::MatrixXd branch_value, branch_gradient;
-    // In a tet with branch nodes, computed once: the piece's linear stiffness on the tet's slots
-    // (eq. 30 over the piece) and each slot's gradient averaged over it (corotated_piece.hpp).
-    Eigen::MatrixXd stiffness;
-    Eigen::MatrixX3d mean_gradient;
-    int side = 0; // +1 / -1 if the piece lies above / below the cut, for theta's sign (0: not known)
-    double volume = 0.0; // in a tet with branch nodes: the sum of the weights (m^3), computed once
-    // In a Tet4 without branch nodes: the phantom element's stiffness over the piece, eq. (30)
-    // at its one gradient with the rule's total weight, computed once (with_tet4_stiffness): a
-    // Tet4's gradients are constant, so a step only turns it (R K_p R^T) and never rebuilds it.
-    // Shared by the copies of the piece; null in a Tet10 model and in tets with branch nodes.
-    std::shared_ptr<const Eigen::Matrix<double, 12, 12>> tet4_stiffness = nullptr;
-  };
-  // `piece` with its tet4_stiffness made (a Tet4 piece).
-  static Piece with_tet4_stiffness(Piece piece, const LinearMaterial& material);
-  // At point q of a piece of tet t: one value per slot, the phantom element's N_a on node a's
-  // slot and on the slot of the sign enrichment active there, and each branch function's value
-  // (for_each_slot_value's g).
-  void slot_values(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::VectorXd& g) const;
-  // The same for the gradients, one row per slot: G_a, and each branch function's own gradient.
-  void slot_gradients(Eigen::Index t, const Piece& piece, std::size_t q, Eigen::MatrixX3d& g) const;
-  // The number of slots of tet t.
+
+  // --- Building the model (cut_xfem_model.cpp) ---
+  // The constructors' work: the slots, and the points of every tet, taken from `before` where
+  // its pieces were kept (nullptr: none).
+  void build(const CutXfemModel* before);
+  // Per tet: the sign enrichments acting in it, sorted, once each (its slots n, n + 1, ...).
+  std::vector<std::vector<int>> sign_enrichments_by_tet() const;
+  // The rows of assembly_slots(): a tet's n nodes, then its sign enrichments, then four slots
+  // per branch corner (branch_ must be made).
+  TetMatrix make_slots(const std::vector<std::vector<int>>& sign_enrichments) const;
+  // The number of tet t's slots: its row of assembly_slots() up to the first -1.
   int num_slots(Eigen::Index t) const;
-  // The branch functions of tet t at x on a piece on side `side` of the cut (0: not known):
-  // one column per branch slot of the tet, values in row 0 and the gradient in rows 1-3.
-  Eigen::Matrix<double, 4, Eigen::Dynamic> branch_functions_at(Eigen::Index t, const Eigen::Vector3d& x, int side) const;
-  // A tet with branch nodes: the dynamic-size path of assemble_tet, linear or corotated with one
-  // rotation per piece (corotated_piece.hpp).
-  void assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
-                           bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
-                           CorotationStatistics& stats) const;
-  // The element's reference positions (node slots) and unknowns (all slots) of branch tet t.
-  void branch_tet_state(Eigen::Index t, const Eigen::VectorXd& u, Eigen::MatrixX3d& X, Eigen::MatrixX3d& q) const;
-  // Branch tet t's share of energy(): 1/2 d^T K_p d per piece.
-  double branch_tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const;
+  // How many of them are sign enrichments.
+  int num_sign_slots(Eigen::Index t) const;
+  // Which slot each node of the phantom element of piece p of tet t takes its enrichment from
+  // (PhantomPiece::enrichment_slot): n entries, -1 for a node with no enrichment active on p.
+  std::vector<int> phantom_slots(Eigen::Index t, int p) const;
+
+  // --- The points of every tet (cut_xfem_model_rules.cpp) ---
+  static std::shared_ptr<const WholeTets> integrate_whole_tets(const TetMesh& mesh, const LinearMaterial& material);
+  // Tet t's pieces and their points (whole, kept from `before`, by the piece rule, or by
+  // BranchTets), with the square of their position force.
+  void integrate_tet(Eigen::Index t, const CutXfemModel* before);
+  // Piece p of tet t on `points`, with its phantom slots; a Tet4 piece outside the branch tets
+  // takes `tet4_stiffness` when the points are another piece's (shared with it), else its own.
+  PhantomPiece phantom_piece(Eigen::Index t, int p, std::vector<PiecePoint> points,
+                             std::shared_ptr<const Eigen::Matrix<double, 12, 12>> tet4_stiffness = nullptr) const;
   // What tet t integrates: its split pieces, or the whole tet as one piece.
-  std::span<const Piece> integrated_pieces(Eigen::Index t) const;
+  std::span<const PhantomPiece> integrated_pieces(Eigen::Index t) const;
+
+  // --- Assembly (cut_xfem_model_assembly.cpp) ---
   // An element force and matrix big enough for any tet's slots, allocated once per assembly.
   struct ElementBuffers {
     explicit ElementBuffers(Eigen::Index max_slots) : f(3 * max_slots), K(3 * max_slots, 3 * max_slots) {}
@@ -313,49 +281,50 @@ private:
   void assemble_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
                     bool corotated, Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
                     CorotationStatistics& stats, ElementBuffers& buffers, double* energy = nullptr) const;
+  // A tet with branch functions: its pieces' forces (BranchTets::add_forces), scattered.
+  void assemble_branch_tet(Eigen::Index t, const Eigen::VectorXd& u, RotationMethod rotation,
+                           CorotationalTangent tangent, bool corotated, Eigen::VectorXd& f_int,
+                           SparseAssembler* assembler, Eigen::VectorXd* rhs_free, CorotationStatistics& stats) const;
+  // The element's reference positions (node slots; 0 for the others) and unknowns (all slots)
+  // of tet t, one row per slot.
+  void slot_state(Eigen::Index t, const Eigen::VectorXd& u, Eigen::MatrixX3d& X, Eigen::MatrixX3d& q) const;
+  // A tet with branch functions: its share of energy() (BranchTets::energy).
+  double branch_tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const;
   // assemble() and assemble_with_energy(): every tet, its energy summed into `energy` if given.
-  CorotationStatistics assemble_all(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                                    SparseAssembler* assembler, Eigen::VectorXd* rhs_free, double* energy) const;
-
+  CorotationStatistics assemble_all(const Eigen::VectorXd& u, RotationMethod rotation, CorotationalTangent tangent,
+                                    Eigen::VectorXd& f_int, SparseAssembler* assembler, Eigen::VectorXd* rhs_free,
+                                    double* energy) const;
   // One tet's share of energy().
   template <int n>
   double tet_energy(Eigen::Index t, const Eigen::VectorXd& u, bool corotated, RotationMethod rotation) const;
 
-  // Every tet integrated whole by its own rule, with the square of its position force |K_e X_e|:
-  // a property of the mesh, shared by the models of a growing cut.
-  struct WholeTets {
-    std::vector<Piece> pieces;
-    std::vector<double> position_force_squared;
-  };
-  static std::shared_ptr<const WholeTets> integrate_whole_tets(const TetMesh& mesh, const LinearMaterial& material);
-  // The constructors' work: the slots, and the points of every tet, taken from `before` where
-  // its pieces were kept (nullptr: none).
-  void build(const CutXfemModel* before);
+  // --- The field (cut_xfem_model_field.cpp) ---
+  // At point q of piece p of tet t: one value per slot, the phantom element's N_a on node a's
+  // slot and on the slot of the sign enrichment active there, and each branch function's value
+  // (for_each_slot_value's g).
+  void slot_values(Eigen::Index t, int p, std::size_t q, Eigen::VectorXd& g) const;
+  // The same for the gradients, one row per slot: G_a, and each branch function's own gradient.
+  void slot_gradients(Eigen::Index t, int p, std::size_t q, Eigen::MatrixX3d& g) const;
 
   const TetMesh& mesh_;
   LinearMaterial material_;
   const MeshPieces& pieces_;
   const SurfaceEnrichment& enrichment_;
   const CrackTipFunctions* tip_ = nullptr;
-  // Per tet with branch nodes: its first branch slot (after the sign slots) and the local nodes
-  // that are branch enriched; -1 and empty elsewhere.
-  std::vector<int> first_branch_slot_;
-  std::vector<std::vector<int>> branch_local_nodes_;
-  std::vector<Eigen::Matrix<double, 4, Eigen::Dynamic>> branch_nodal_values_; // per such tet: R F_l at its n nodes (4 x n)
-  std::vector<Eigen::Vector4d> ramp_corners_; // per tet: 1 for the corners in I* (all four without Fries's correction)
   PieceRuleFunction rule_;
   TetMatrix slots_;
-  std::vector<std::vector<Piece>> piece_data_; // per tet; empty for tets integrated whole
-  std::shared_ptr<const WholeTets> whole_;      // every tet's own rule, used where it is integrated whole
-  std::vector<double> position_force_squared_;  // per tet: |K_p X_e|^2 summed over what it integrates
+  BranchTets branch_;                                 // chapter 5: the tets with branch functions
+  std::vector<std::vector<PhantomPiece>> piece_data_; // per tet; empty for tets integrated whole
+  std::shared_ptr<const WholeTets> whole_;            // every tet's own rule, used where it is integrated whole
+  std::vector<double> position_force_squared_;        // per tet: |K_p X_e|^2 summed over what it integrates
   double position_force_norm_ = 0.0;
 };
 
 /// The DofMap of [u; a]: the Dirichlet conditions on the mesh's nodes, a_i^k = 0 for every
 /// enrichment of a gripped node (chapter 3's make_xfem_dof_map says why: the clamp holds the
 /// tissue on every side of the cut at the node), and a_i^k = 0 for every sliver enrichment,
-/// V_enr / V_supp < sliver_fraction (Koschier eq. 22, enrichment_volumes.hpp; 0 keeps every
-/// sliver that has any volume).
+/// V_enr / V_supp < sliver_fraction (Koschier et al. 2017, eq. 22, enrichment_volumes.hpp; 0
+/// keeps every sliver that has any volume).
 DofMap make_cut_xfem_dof_map(const CutXfemModel& model, const std::vector<DirichletNodes>& conditions,
                              double sliver_fraction = default_sliver_fraction);
 
