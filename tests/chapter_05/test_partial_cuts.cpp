@@ -147,7 +147,7 @@ TEST_CASE("a curved cut whose front tets see it off the frame's half-plane: the 
 TEST_CASE("branch gradients behind a curved cut, where the frame is reflected, agree with central differences of the values") {
   // The cut z = 0.1 + 20 (0.015 - x)^2 for x < 0.015: tangent to the frame's half-plane z = 0.1
   // at the front x = 0.015 and curving up behind it. A point of the piece below the sheet but
-  // above z = 0.1 has x_b > 0 while its piece lies below the cut: there branch_functions_at
+  // above z = 0.1 has x_b > 0 while its piece lies below the cut: there BranchTets::functions_at
   // reflects b, G(x) = F(x_a, -x_b), whose gradient is dF/dx_a grad x_a - dF/dx_b grad x_b.
   // Every branch function's gradient (functions_at) must be the derivative of its value
   // (branch_values_at) on the same piece, in the reflected region and elsewhere.
