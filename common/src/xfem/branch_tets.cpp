@@ -177,7 +177,8 @@ std::vector<std::vector<PiecePoint>> BranchTets::piece_rules(Eigen::Index t, std
     const TetPieces whole = split_tet_by_triangles(X, {});
     const PieceQuadratureRule r =
         collapsed ? front_collapsed_rule(X, whole, 0, tip_->fronts, front_points, tip_->front_grading)
-                  : near_front_graded_rule(whole, 0, tip_->fronts, tip_->blending_degree, tip_->blending_depth);
+                  : near_front_graded_rule(whole, 0, tip_->fronts, tip_->blending_degree, tip_->blending_depth,
+                                           tip_->blending_tolerance, 2 * mesh_->order());
     points.push_back(piece_points(r, X, n));
     sides.assign(1, 0);
     return points;
@@ -191,7 +192,8 @@ std::vector<std::vector<PiecePoint>> BranchTets::piece_rules(Eigen::Index t, std
     else if (front_tet)
       r = refined_subtet_rule(tet_pieces, p, 2 * front_points - 1, 1);
     else
-      r = near_front_graded_rule(tet_pieces, p, tip_->fronts, tip_->blending_degree, tip_->blending_depth);
+      r = near_front_graded_rule(tet_pieces, p, tip_->fronts, tip_->blending_degree, tip_->blending_depth,
+                                 tip_->blending_tolerance, 2 * mesh_->order());
     points.push_back(piece_points(r, X, n));
     // The side of the cut the piece lies on, where all its cut polygons agree: behind the front,
     // theta's sign is taken from it (functions_at).

@@ -16,9 +16,9 @@
 ///   enriched nodes (surface_enrichment.hpp); the fronts are still found, to be reported and drawn.
 ///
 /// The rules of the tets with branch functions are the model's (CrackTipFunctions), except that
-/// the blending rules are graded towards the front once, not three times: ten times cheaper, for
-/// a quadrature error (2e-5 on the Williams slab) far below a program's discretisation error
-/// (scene_crack_tip.cpp gives the numbers).
+/// the blending rules are graded towards the front once, not three times, and held to 1e-5 of
+/// V / h, not the strict default: ten times cheaper, for a quadrature error (2e-5 on the Williams
+/// slab) far below a program's discretisation error (scene_crack_tip.cpp gives the numbers).
 #pragma once
 
 #include "kerf/cut/crack_front.hpp"

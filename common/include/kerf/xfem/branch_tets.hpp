@@ -75,6 +75,9 @@ struct CrackTipFunctions {
   /// How often the collapsed rule halves a face near the front's line at most
   /// (front_collapsed_rule's grading, 0 to 12).
   int front_grading = default_front_grading;
+  /// The blending rules' goal, a fraction of V / h (near_front_graded_rule's tolerance); 0: the
+  /// strict default, front_rule_tolerance of the blending degree's points.
+  double blending_tolerance = 0.0;
 };
 
 /// The tets of a mesh that hold a branch-enriched corner, with what the model needs of them.
