@@ -74,6 +74,7 @@
 #include "kerf/xfem/cut_state_transfer.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/cut_xfem_output.hpp"
+#include "kerf/xfem/hinged_fragments.hpp"
 #include "kerf/xfem/split_tet_masses.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 #include "kerf/xfem/visual_surface.hpp"
@@ -443,7 +444,11 @@ void LiverCut::apply_cut() {
   const kerf::CrackTipFunctions* tip = crack_tip ? crack_tip->tip_functions() : nullptr;
   auto model = model_ ? std::make_unique<kerf::CutXfemModel>(*model_, *pieces, sign, tip)
                       : std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, *pieces, sign, rule_, tip);
-  kerf::DofMap dofs = kerf::make_cut_xfem_dof_map(*model, held_);
+  // Several passes of the blade beside the held back carve out fragments that the clamp's hold
+  // of an enrichment (or Koschier et al.'s eq. 22) pins at one node or along one line: a pendulum
+  // that swings faster than the frozen step can follow, whose energy then grows by 1 + theta^2 a
+  // step. Such a fragment is let go, free as any piece the cut frees (xfem/hinged_fragments.hpp).
+  kerf::DofMap dofs = kerf::release_hinged_fragments(*model, kerf::make_cut_xfem_dof_map(*model, held_));
   rebuild_times_.model = lap();
   const bool rebuild = model_ != nullptr;
   if (model_) {
