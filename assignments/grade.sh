@@ -14,7 +14,11 @@
 # It only runs what is built: `./kerf.sh assignment NN` builds it first, then calls this.
 # Which test cases grade which function is the assignment's grading.txt, one line each (lines
 # that start with # are comments):
-#   <function> | <test suite, a folder of tests/> | <doctest test-case filter>
+#   <function> | <test suite, a folder of tests/, or "assignment"> | <doctest test-case filter>
+# The suite "assignment" is the assignment's own test cases, in its folder tests/. Each function
+# is graded alone: its test cases run in an executable where it is the only function of the
+# stubs that is yours, and every other stubbed function is the library's (isolate.sh), so a bug
+# lowers the score of the function that has it and of no other.
 # Exit status: 0 when the grading ran (whatever the score) or the check passed, 1 when a check
 # failed, 2 when the grading could not run (a bad argument, a missing file or executable).
 set -euo pipefail
@@ -33,7 +37,7 @@ while [ $# -gt 0 ]; do
       [ $# -ge 2 ] || fail "--build-dir needs a folder"
       build_dir=$2
       shift ;;
-    -h | --help) sed -n '2,19p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,23p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) fail "unknown option $1 (try --help)" ;;
     *)
       [ -z "$number" ] || fail "one assignment at a time: got $number and $1"
@@ -61,9 +65,15 @@ grading=$folder/grading.txt
 case $build_dir in /*) ;; *) build_dir=$here/$build_dir ;; esac
 [ -d "$build_dir" ] || fail "no build in $build_dir: run ./kerf.sh assignment $number, which builds it"
 
-# The graded executable of a suite: the assignment's copy, with your stubs, or the suite itself.
+# The executable that grades function $2 on suite $1: the assignment's copy of the suite with
+# your $2 alone in place of the library's, or, with --reference, the suite itself.
 executable() {
-  if [ "$mode" = reference ]; then echo "$build_dir/tests/test_$1"; else echo "$build_dir/assignments/assignment_${number}_$1"; fi
+  if [ "$mode" = reference ]; then
+    if [ "$1" = assignment ]; then echo "$build_dir/assignments/assignment_${number}_assignment_reference"
+    else echo "$build_dir/tests/test_$1"; fi
+  else
+    echo "$build_dir/assignments/assignment_${number}_$1_$(printf '%s' "$2" | sed 's/[^A-Za-z0-9_]/_/g')"
+  fi
 }
 
 # The test cases of a suite whose names match a doctest filter, one per line.
@@ -80,13 +90,13 @@ exact_filter() { printf '%s' "$1" | sed 's/\\/\\\\/g; s/,/\\,/g'; }
 # not stop the grading.
 time_limit=${KERF_GRADE_TIMEOUT:-300}
 
-# Runs one test case once, however many functions it grades; remembers whether it passed and,
-# if not, the first failing check doctest printed (its location, what failed, the values).
+# Runs one test case in one executable once; remembers whether it passed and, if not, the first
+# failing check doctest printed (its location, what failed, the values).
 declare -A passed first_failure
 run_test_case() {
   local key="$1"$'\t'"$2" output status=0
   [ -n "${passed[$key]+set}" ] && return 0
-  output=$(timeout "$time_limit" "$(executable "$1")" --no-version --no-colors "-tc=$(exact_filter "$2")" 2>&1) || status=$?
+  output=$(timeout "$time_limit" "$1" --no-version --no-colors "-tc=$(exact_filter "$2")" 2>&1) || status=$?
   if [ "$status" -eq 0 ]; then
     passed[$key]=1
   elif [ "$status" -eq 124 ]; then
@@ -123,7 +133,11 @@ while IFS= read -r line || [ -n "$line" ]; do
   if [ -z "$function" ] || [ -z "$suite" ] || [ -z "$filter" ] || [ -n "${extra:-}" ]; then
     fail "$name/grading.txt:$line_number: expected \"<function> | <suite> | <test-case filter>\", got \"$line\""
   fi
-  [ -d "$root/tests/$suite" ] || fail "$name/grading.txt:$line_number: there is no test suite tests/$suite"
+  if [ "$suite" = assignment ]; then
+    [ -d "$folder/tests" ] || fail "$name/grading.txt:$line_number: the suite \"assignment\" is $name/tests, and there is none"
+  else
+    [ -d "$root/tests/$suite" ] || fail "$name/grading.txt:$line_number: there is no test suite tests/$suite"
+  fi
   functions+=("$function") suites+=("$suite")
   filters+=("$(printf '%s' "$filter" | sed 's/[[:space:]]*,[[:space:]]*/,/g')")
 done <"$grading"
@@ -142,7 +156,7 @@ declare -A graded_by
 order=()
 for i in "${!functions[@]}"; do
   function=${functions[$i]} suite=${suites[$i]} filter=${filters[$i]}
-  exe=$(executable "$suite")
+  exe=$(executable "$suite" "$function")
   if [ ! -x "$exe" ]; then
     fail "${exe#"$root"/} is not built: run ./kerf.sh assignment $number$([ "$mode" = reference ] && echo " --reference"), or cmake --build ${build_dir#"$root"/} --target assignment_$number"
   fi
@@ -152,19 +166,25 @@ for i in "${!functions[@]}"; do
   for test_case in "${cases[@]}"; do graded_by[$function]+="$suite"$'\t'"$test_case"$'\n'; done
 done
 
+# Where a suite's test cases are, as the report names it.
+suite_folder() { if [ "$1" = assignment ]; then echo "$name/tests"; else echo "tests/$1"; fi; }
+
 total=0 total_passed=0 functions_without_failure=()
 for function in "${order[@]}"; do
-  mapfile -t keys < <(printf '%s' "${graded_by[$function]}")
-  count=0 where=""
-  for key in "${keys[@]}"; do
+  mapfile -t cases < <(printf '%s' "${graded_by[$function]}")
+  count=0 where="" keys=()
+  for entry in "${cases[@]}"; do
+    suite=${entry%%$'\t'*}
+    key=$(executable "$suite" "$function")$'\t'${entry#*$'\t'}
+    keys+=("$key")
     run_test_case "${key%%$'\t'*}" "${key#*$'\t'}"
     [ "${passed[$key]}" = 1 ] && count=$((count + 1))
-    [[ $where == *"tests/${key%%$'\t'*}"* ]] || where+="${where:+, }tests/${key%%$'\t'*}"
+    [[ $where == *"$(suite_folder "$suite")"* ]] || where+="${where:+, }$(suite_folder "$suite")"
   done
   printf '%-28s %d/%d test cases pass  (%s)\n' "$function" "$count" "${#keys[@]}" "$where"
-  for key in "${keys[@]}"; do
-    test_case=${key#*$'\t'} suite_note=""
-    [[ $where == *,* ]] && suite_note="  (tests/${key%%$'\t'*})"
+  for i in "${!keys[@]}"; do
+    key=${keys[$i]} test_case=${keys[$i]#*$'\t'} suite_note=""
+    [[ $where == *,* ]] && suite_note="  ($(suite_folder "${cases[$i]%%$'\t'*}"))"
     if [ "${passed[$key]}" = 1 ]; then
       echo "    passed  $test_case$suite_note"
     else
@@ -180,7 +200,7 @@ percent=$((100 * total_passed / total)) # rounded down: 100 % means everything p
 echo
 echo "score: $total_passed/$total test cases ($percent %)"
 if [ "$mode" != reference ] && [ "$percent" -lt 100 ]; then
-  echo "(each function counts its own test cases; a test case that grades two functions counts twice)"
+  echo "(each function counts its own test cases, run with the library's version of every other function)"
 fi
 
 case $check in
@@ -194,12 +214,12 @@ case $check in
       echo "grade.sh: --check-stubs: no test case of $function fails with the stubs: it grades nothing" >&2
       status=1
     done
-    # Not an error by the design, but worth a look: a test case that passes with the stubs
-    # grades none of the student's code (it may run a chapter's program, which links the
-    # library's own code) and gives its points away.
+    # Not an error by the design, but worth a look: a test case that passes with a function's
+    # stub does not call that function (or runs a chapter's program, which links the library's
+    # own code) and gives its points away.
     for key in "${!passed[@]}"; do
       [ "${passed[$key]}" = 1 ] &&
-        echo "grade.sh: --check-stubs: note: \"${key#*$'\t'}\" (tests/${key%%$'\t'*}) passes with the stubs: it grades none of them" >&2
+        echo "grade.sh: --check-stubs: note: \"${key#*$'\t'}\" passes in $(basename "${key%%$'\t'*}"), with that function's stub: it does not grade it" >&2
     done
     for function in "${order[@]}"; do
       grep -rqw -- "$function" "$folder/stubs" ||

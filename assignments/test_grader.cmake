@@ -12,7 +12,7 @@ file(WRITE ${WORK}/assignments/94_no_suite/grading.txt "f | no_such_suite | *\n"
 file(WRITE ${WORK}/assignments/93_not_built/grading.txt "f | common | *\n")
 # The suite's own executable stands in for assignment 96's graded copy: only its test-case
 # names matter here.
-file(CREATE_LINK ${SUITE} ${WORK}/build/assignments/assignment_96_common SYMBOLIC)
+file(CREATE_LINK ${SUITE} ${WORK}/build/assignments/assignment_96_common_f SYMBOLIC)
 
 function(expect_one_line_error expected)
   execute_process(COMMAND bash ${WORK}/assignments/grade.sh ${ARGN} --build-dir ${WORK}/build
@@ -34,4 +34,4 @@ expect_one_line_error("assignments/97_no_grading/grading.txt is missing" 97)
 expect_one_line_error("the filter of f matches no test case of tests/common" 96)
 expect_one_line_error("grading.txt:2: expected" 95)
 expect_one_line_error("there is no test suite tests/no_such_suite" 94)
-expect_one_line_error("assignment_93_common is not built" 93)
+expect_one_line_error("assignment_93_common_f is not built" 93)

@@ -20,7 +20,7 @@ namespace kerf {
 /// and scatter it as the consistent mass is scattered, M = sum_e sum_p T_p^T (D_p kron I_3) T_p:
 /// node a's phantom value on piece p is u_i, plus a_k where enrichment k (model.phantom_node) is
 /// active, so D_p,aa lands on (i, i) and, with an enrichment, on (i, k), (k, i) and (k, k).
-/// schoch_eq_81_82 is Paper 000 eq. 81, M^uu_ii = m / n, and eq. 82, M^aa_kk = sum over the pieces
+/// schoch_eq_81_82 is Schoch et al. 2013, eq. 81, M^uu_ii = m / n, and eq. 82, M^aa_kk = sum over the pieces
 /// p on which enrichment k is active of (V_p / V) (m / n), M^ua = 0; it refuses a model with
 /// crack-tip functions (require_no_crack_tip_functions).
 /// A tet with branch functions (model.has_branch_functions) is not lumped by any scheme: its

@@ -8,7 +8,7 @@
 
 namespace kerf {
 
-/// Newmark's predictor on the free DOFs (Hughes 2000, section 9.1; notes 6.3): where u and v get
+/// Newmark's predictor on the free DOFs (Hughes 2000, section 9.1): where u and v get
 /// in a step of dt if a_{n+1} were 0,
 ///   u~ = u_n + dt v_n + dt^2 (1/2 - beta) a_n,   v~ = v_n + dt (1 - gamma) a_n.
 NewmarkPrediction newmark_predict([[maybe_unused]] const Eigen::VectorXd& u, [[maybe_unused]] const Eigen::VectorXd& v,
