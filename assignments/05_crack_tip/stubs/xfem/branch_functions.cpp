@@ -15,7 +15,7 @@ Eigen::Vector4d branch_function_values([[maybe_unused]] double r, [[maybe_unused
   throw std::logic_error("assignment 05: implement branch_function_values (assignments/05_crack_tip/README.md)");
 }
 
-/// The derivatives of the four functions along the front's frame (notes 5.3, in closed form;
+/// The derivatives of the four functions along the front's frame (in closed form;
 /// d/dx_c = 0): row l is F_{l+1}, column 0 is dF/dx_a, column 1 is dF/dx_b, with
 ///   d/dx_a = cos(theta) d/dr - sin(theta) / r d/dtheta,   d/dx_b = sin(theta) d/dr + cos(theta) / r d/dtheta.
 /// They grow like 1 / sqrt(r). @param r > 0 (at r = 0 they are unbounded; the caller guards)
@@ -32,7 +32,7 @@ BranchValues branch_functions([[maybe_unused]] const FrontPolar& polar) {
   throw std::logic_error("assignment 05: implement branch_functions (assignments/05_crack_tip/README.md)");
 }
 
-/// Node i's four shifted enrichment functions (Paulus eq. 3 in the shifted form, notes 5.3)
+/// Node i's four shifted enrichment functions (Paulus eq. 3 in the shifted form)
 ///   N_i(x) (F_l(x) - F_l(x_i)),   gradient  grad N_i (F_l(x) - F_l(x_i)) + N_i grad F_l(x),
 /// which vanish at every node. at_x is branch_functions at x, at_node is F at the node x_i.
 BranchValues shifted_branch_functions([[maybe_unused]] double N_i, [[maybe_unused]] const Eigen::Vector3d& grad_N_i,

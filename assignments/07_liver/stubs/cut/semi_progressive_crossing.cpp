@@ -25,7 +25,7 @@ EdgeTriangleContact edge_triangle_contact([[maybe_unused]] const SweptTriangle& 
   throw std::logic_error("assignment 07: implement edge_triangle_contact (assignments/07_liver/README.md)");
 }
 
-/// Whether the sheet has crossed a tet (notes 7.2, replacing Gutierrez and Ramos's third crossed
+/// Whether the sheet has crossed a tet (the chapter's rule, replacing Gutierrez and Ramos's third crossed
 /// edge, section 3.3): the corners not on the sheet, joined by the tet's edges that are not
 /// crossed and have neither end on the sheet, fall into two or more groups.
 /// @param edge_crossed    per edge of the tet, in the order of tet_edge_corners (kerf/mesh/tet_mesh.hpp)
