@@ -333,7 +333,10 @@ void CutDynamics::setup_nonlinear_integrator() {
   }
   kerf::NonlinearNewmarkSettings settings;
   settings.newmark = {time.beta, time.gamma};
-  settings.update = time.corotation == "newton" ? kerf::RotationUpdate::newton : kerf::RotationUpdate::frozen;
+  // Chapter 6's default is the frozen step (Mueller and Gross): its bodies turn slowly.
+  settings.update = time.corotation == "newton"    ? kerf::RotationUpdate::newton
+                    : time.corotation == "checked" ? kerf::RotationUpdate::checked
+                                                     : kerf::RotationUpdate::frozen;
   settings.tolerance = time.tolerance;
   // The steps' solver: the scene's, or by default Jacobi-preconditioned conjugate gradients to
   // time.tolerance, started from the last step's acceleration. The mass term makes a step's matrix

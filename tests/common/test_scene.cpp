@@ -98,8 +98,9 @@ TEST_CASE("the time integrators of chapter 6 read their own fields, and their de
   CHECK(newmark.gamma == 0.5);
   CHECK(newmark.mass == "consistent");
   CHECK(newmark.initial_velocity.z() == -1.0);
-  CHECK(newmark.corotation == "frozen");
+  CHECK(newmark.corotation.empty()); // the chapter's default
   CHECK(time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "corotation": "newton"})").corotation == "newton");
+  CHECK(time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "corotation": "checked"})").corotation == "checked");
   CHECK_FALSE(newmark.allow_unstable);
   // A pair outside the unconditionally stable range, asked for on purpose.
   const kerf::TimeSpec unstable = time_of(R"({"integrator": "newmark", "dt": 0.01, "steps": 5, "beta": 0.1, "allow_unstable": true})");

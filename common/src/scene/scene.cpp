@@ -379,9 +379,9 @@ TimeSpec read_time(const ObjectReader& r) {
   time.initial_velocity = t.vector<3>("initial_velocity", Eigen::Vector3d::Zero());
   time.allow_unstable = t.boolean("allow_unstable", false);
   time.mass = t.text("mass", time.integrator == "central_difference" ? "lumped" : "consistent");
-  time.corotation = t.text("corotation", time.corotation);
-  if (time.corotation != "frozen" && time.corotation != "newton")
-    t.fail("time.corotation", "expected \"frozen\" or \"newton\", got \"" + time.corotation + "\"");
+  time.corotation = t.text("corotation", "");
+  if (t.has("corotation") && time.corotation != "frozen" && time.corotation != "checked" && time.corotation != "newton")
+    t.fail("time.corotation", "expected \"frozen\", \"checked\" or \"newton\", got \"" + time.corotation + "\"");
   if (!(time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
   if (time.steps < 1) t.fail("time.steps", "expected a positive integer");
   if ((time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");

@@ -1,6 +1,7 @@
 /// @file nonlinear_newmark.hpp
-/// @brief Newmark's method for M a + C v + f_int(u) = f(t) with a nonlinear internal force (the corotated body, Paper 000
-///        eq. 40) and prescribed DOFs that move in time: rotations frozen per step (Mueller and Gross), or Newton.
+/// @brief Newmark's method for M a + C v + f_int(u) = f(t) with a nonlinear internal force (the corotated body, Schoch et al.
+///        eq. 40) and prescribed DOFs that move in time: rotations frozen per step (Mueller and Gross),
+///        the frozen step checked at its end, or Newton.
 #pragma once
 
 #include "kerf/corotation/corotated_element.hpp"
@@ -54,7 +55,7 @@ struct NonlinearDynamicSystem {
 
 /// How a step treats f_int.
 enum class RotationUpdate {
-  /// Mueller and Gross (2004), notes 6.3: the rotations of the step's start, f_int(u) ~
+  /// Mueller and Gross (2004): the rotations of the step's start, f_int(u) ~
   /// f_int(u_n) + K_R (u - u_n) with the warped K_R, so the step is one linear solve. Exact
   /// for a linear body; for the corotated one it lags the rotations by a step.
   frozen,
@@ -64,13 +65,23 @@ enum class RotationUpdate {
   /// element that little else holds) solves with the frozen step's matrix instead, whose warped
   /// tangent is positive semi-definite; the next iteration tries the consistent one again.
   newton,
+  /// The frozen step, checked at its end: f_int and the warped K_R are assembled at u_{n+1} (an
+  /// assembly the next step's start needs anyway), and where the step's relative residual with
+  /// them exceeds the tolerance (its rotations lagged: a piece turned a good part of a radian in
+  /// the step), the step solves again with the rotations frozen at its latest iterate, until the
+  /// residual is within the tolerance. A quasi-Newton iteration on Newton's equations with the
+  /// warped tangent, positive semi-definite where the consistent one need not be; while it
+  /// iterates, the damping C = alpha M + beta K_R takes its K_R at the iterate too, and a
+  /// correction that makes the residual grow is taken back by half. Chapter 7's default: its
+  /// blade carves chips that turn faster than the frozen step follows, whose energy the lag feeds.
+  checked,
 };
 
 struct NonlinearNewmarkSettings {
   NewmarkParameters newmark;                   ///< beta, gamma (default: average acceleration)
   RotationUpdate update = RotationUpdate::frozen;
-  double tolerance = 1e-8;                     ///< newton: relative residual of each step
-  int max_iterations = 30;                     ///< newton: iterations per step before giving up
+  double tolerance = 1e-8;                     ///< newton, checked: relative residual of each step
+  int max_iterations = 30;                     ///< newton, checked: iterations per step before giving up
   SolverSettings solver;
 };
 
@@ -78,8 +89,8 @@ struct NonlinearNewmarkSettings {
 struct NonlinearStepReport {
   StepEnergy energy;              ///< external work (loads and reactions), damping, numerical (the rest of the balance)
   int iterations = 0;             ///< linear solves
-  double relative_residual = 0.0; ///< newton: the last one; frozen: 0 (not measured)
-  bool converged = true;          ///< newton: whether it met the tolerance
+  double relative_residual = 0.0; ///< newton, checked: the last one; frozen: 0 (not measured)
+  bool converged = true;          ///< newton, checked: whether it met the tolerance
   int warped_fallbacks = 0;       ///< newton: iterations that solved with the frozen step's matrix instead
   int solver_iterations = 0;      ///< iterations of the linear solver summed over the step's solves (1 per direct solve)
   /// Processor time (std::clock: not inflated by other programs on a shared machine) spent
@@ -99,9 +110,10 @@ struct NonlinearStepReport {
 /// into a pattern found once (StepMatrix below): no sparse sums or products per step, only one
 /// pass over the stored values.
 ///
-/// Damping is Rayleigh's on the current rotated stiffness, C = alpha M + beta K_R(u_n) (notes
-/// 6.3, as SOFA and Vega do; the papers do not say), rebuilt every step and held through the
-/// step's Newton iterations, so that beta damps the rate of strain and not a rigid rotation.
+/// Damping is Rayleigh's on the current rotated stiffness, C = alpha M + beta K_R(u_n) (as SOFA
+/// and Vega do; the papers do not say), rebuilt every step and held through the step's Newton
+/// iterations, so that beta damps the rate of strain and not a rigid rotation (a checked step
+/// that iterates takes K_R at its iterate, see RotationUpdate::checked).
 ///
 /// The energy account (StepEnergy): external work = trapezoidal work of the loads on all DOFs
 /// plus that of the reactions r = M a + C v + f_int - f on the prescribed ones,

@@ -137,15 +137,19 @@ struct TimeSpec {
   /// The relative residual of each step's solve in the nonlinear Newmark step (corotational
   /// model, or moving clamps): the conjugate-gradient tolerance of its linear solves when the
   /// scene gives no "solver" (chapter 6 then steps with Jacobi-preconditioned CG), and where a
-  /// "newton" step stops iterating. 1e-3: on the cut soft block of
+  /// "checked" or "newton" step stops iterating. 1e-3: on the cut soft block of
   /// figures/06_newmark/bench_newmark.md, within 1.3e-4 of a run solved exactly (1e-2 saves 14-23 %
   /// of the time but is only 5-13 times inside the 1 % bound).
   double tolerance = 1e-3;
   Eigen::Vector3d initial_velocity{0.0, 0.0, 0.0}; ///< m/s, the same at every node
   bool allow_unstable = false;              ///< run a Newmark pair outside 2 beta >= gamma >= 1/2, or an explicit step above its limit
   /// How a corotational Newmark step treats the rotations: "frozen" (rotations of the step's
-  /// start, one linear solve, Mueller and Gross 2004) or "newton" (iterated to `tolerance`).
-  std::string corotation = "frozen";
+  /// start, one linear solve, Mueller and Gross 2004), "checked" (the frozen step, solved again
+  /// with the rotations of its iterate until its residual is within `tolerance`) or "newton"
+  /// (Newton with the consistent tangent, to `tolerance`); RotationUpdate in
+  /// nonlinear_newmark.hpp. Empty (not given): the chapter's default, "frozen" in chapter 6,
+  /// "checked" in chapter 7, whose blade carves pieces that turn faster than a frozen step follows.
+  std::string corotation;
 };
 
 /// The "blade" field (chapter 7): the cutting edge's path in the world, and how finely its
