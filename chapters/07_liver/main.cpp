@@ -33,7 +33,9 @@
    - pictures: a fine visual surface (xfem/visual_surface.hpp) and the walls of the cut
      (xfem/cut_faces.hpp), drawn from a fixed camera (render/organ_view.hpp), a PNG per frame
      and an animated PNG of them all (io/animated_png.hpp);
-   - a window in which the mouse is the blade (--interactive).
+   - a window in which the mouse is the blade (--interactive);
+   - chapter 6's step, checked: solved again with the rotations of its end where they lagged
+     (nonlinear_newmark.hpp, RotationUpdate::checked), for the pieces the blade sets turning.
    Read chapters 1-6 first. */
 
 // @sect3{Include files}
@@ -445,8 +447,9 @@ void LiverCut::apply_cut() {
                       : std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, *pieces, sign, rule_, tip);
   // Several passes of the blade beside the held back carve out fragments that the clamp's hold
   // of an enrichment (or Koschier et al.'s eq. 22) pins at one node or along one line: a pendulum
-  // that swings faster than the frozen step can follow, whose energy then grows by 1 + theta^2 a
-  // step. Such a fragment is let go, free as any piece the cut frees (xfem/hinged_fragments.hpp).
+  // that swings faster than a frozen step can follow, whose energy then grows by 1 + theta^2 a
+  // step, and that no tissue holds. Such a fragment is let go, free as any piece the cut frees
+  // (xfem/hinged_fragments.hpp).
   kerf::DofMap dofs = kerf::release_hinged_fragments(*model, kerf::make_cut_xfem_dof_map(*model, held_));
   rebuild_times_.model = lap();
   const bool rebuild = model_ != nullptr;
@@ -502,8 +505,8 @@ void LiverCut::apply_cut() {
 //
 // Chapter 6's corotated Newmark step on the current model and apply_cut's unknowns (a piece the
 // cut frees simply falls, as in chapter 6): the mass and the gravity load of the scene's lumping, the
-// tangent's assembler on the model's pattern, and the step with rotations frozen at its start
-// and Jacobi-preconditioned CG started from the last acceleration. The pattern, the mass and the
+// tangent's assembler on the model's pattern, and the checked step (by default) with
+// Jacobi-preconditioned CG started from the last acceleration. The pattern, the mass and the
 // preconditioner change only here, when the topology changes; a step of a run whose cut does not
 // grow reuses them.
 void LiverCut::setup_system() {
@@ -610,9 +613,10 @@ void LiverCut::setup_system() {
 // @sect4{LiverCut::assemble_at}
 //
 // The corotated f_int, warped tangent and W at u, unless they are those of the last u asked
-// about. A frozen step (chapter 6) asks for W(u_{n+1}) at its end and for f_int(u_{n+1}) and
-// K_R(u_{n+1}) at the next step's start: one rotation per point serves the three
-// (CutXfemModel::assemble_with_energy), where energy() and assemble() would find it twice.
+// about. A checked step asks for f_int(u_{n+1}) and K_R(u_{n+1}) for its check, for W(u_{n+1})
+// at its end, and the next step for the same f_int and K_R at its start: one rotation per point
+// serves them all (CutXfemModel::assemble_with_energy), where energy() and assemble() would find
+// it twice.
 void LiverCut::assemble_at(const Eigen::VectorXd& u, kerf::RotationMethod rotation) {
   if (assembled_.valid && assembled_.u.size() == u.size() && assembled_.u == u) return;
   const auto start = std::chrono::steady_clock::now();
