@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <doctest/doctest.h>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -108,4 +109,51 @@ TEST_CASE("cg-jacobi refuses a basis that does not fit") {
   direct->set_preconditioner_basis({identity, {}});
   const Eigen::VectorXd x = solve_with(*direct, A, Eigen::VectorXd::Ones(6));
   CHECK((x - Eigen::VectorXd::Ones(6)).norm() < 1e-14);
+}
+
+TEST_CASE("cg-jacobi in a basis, warm started: the same x as a dense Cholesky; an indefinite matrix is refused") {
+  std::mt19937 rng(5);
+  const int n = 60, split = 40;
+  const Eigen::SparseMatrix<double> A = two_block_spd(n, split, rng);
+  Eigen::VectorXd b(n), start(n);
+  for (int i = 0; i < n; ++i) {
+    b[i] = std::cos(0.3 * i);
+    start[i] = 0.1 * std::sin(2.0 * i);
+  }
+  const Eigen::VectorXd exact = Eigen::MatrixXd(A).llt().solve(b);
+  const auto solver = kerf::make_linear_solver({"cg-jacobi", 1e-12, 1000});
+  solver->set_preconditioner_basis({mixing_basis(n, split, rng), std::vector<int>(n, 0)});
+  solver->analyze_pattern(A);
+  solver->factorize(A);
+  Eigen::VectorXd x = start; // a guess that is not the answer: the correction is added to it
+  solver->solve(b, x);
+  CHECK((x - exact).norm() < 1e-9 * exact.norm());
+
+  // [[1, 2], [2, 1]] has eigenvalues 3 and -1 and a positive diagonal, which Jacobi needs. With
+  // b = (1, -1), the eigenvector of -1, CG's first step meets p^T A p = -2 < 0 and lands on
+  // x = -b, where A x = b holds and x^T A x = -2: the solve must say the matrix is not positive
+  // definite, not hand back x. The same in the unknowns (no basis) and in a basis that mixes the
+  // two unknowns (S = [[1, 0], [0.5, 1]]), from zero and from a warm start.
+  Eigen::SparseMatrix<double> indefinite(2, 2);
+  indefinite.insert(0, 0) = 1.0;
+  indefinite.insert(0, 1) = 2.0;
+  indefinite.insert(1, 0) = 2.0;
+  indefinite.insert(1, 1) = 1.0;
+  indefinite.makeCompressed();
+  Eigen::SparseMatrix<double> mixing(2, 2);
+  mixing.insert(0, 0) = 1.0;
+  mixing.insert(1, 0) = 0.5;
+  mixing.insert(1, 1) = 1.0;
+  mixing.makeCompressed();
+  for (const bool with_basis : {false, true})
+    for (const double warm : {0.0, 0.01}) {
+      CAPTURE(with_basis);
+      CAPTURE(warm);
+      const auto cg = kerf::make_linear_solver({"cg-jacobi", 1e-10, 100});
+      if (with_basis) cg->set_preconditioner_basis({mixing, {}});
+      cg->analyze_pattern(indefinite);
+      cg->factorize(indefinite);
+      Eigen::VectorXd y = Eigen::VectorXd::Constant(2, warm);
+      CHECK_THROWS_AS(cg->solve(Eigen::Vector2d(1.0, -1.0), y), kerf::NotPositiveDefinite);
+    }
 }

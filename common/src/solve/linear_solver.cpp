@@ -159,91 +159,115 @@ private:
   }
 
   // The same iteration in the basis, one per component (the class comment). Vectors named _w
-  // live in the basis (size n), the others are the unknowns padded to whole blocks. Returns
-  // whether every component met the tolerance.
+  // live in the basis (size n), the others are the unknowns padded to whole blocks; all are the
+  // solver's own, sized once, so that an iteration allocates nothing. Returns whether every
+  // component met the tolerance.
   bool solve_in_basis(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     const Eigen::Index n = A_.size(), padded = A_.padded_size();
     const auto C = static_cast<std::size_t>(num_components_);
-    const auto S_times = [&](const Eigen::VectorXd& w) -> Eigen::VectorXd { return w + E_ * w; };
-    const auto S_transpose_times = [&](const auto& v) -> Eigen::VectorXd { return v + E_transpose_ * v; };
-    Eigen::VectorXd x_padded = Eigen::VectorXd::Zero(padded), q = Eigen::VectorXd::Zero(padded), Aq(padded);
-    x_padded.head(n) = x;
-    A_.multiply(x_padded, Aq);
-    Eigen::VectorXd r_w = S_transpose_times(b - Aq.head(n));
-    const Eigen::VectorXd b_w = S_transpose_times(b);
+    if (q_.size() != padded) {
+      q_ = Eigen::VectorXd::Zero(padded);
+      Aq_.resize(padded);
+    }
+    for (Eigen::VectorXd* v : {&r_w_, &b_w_, &g_w_, &z_w_, &p_w_, &Ap_w_, &dx_w_})
+      if (v->size() != n) v->resize(n);
+    // w_out = S^T v = v + E^T v and w_out = S w = w + E w (S = I + E).
+    const auto S_transpose_times = [&](const auto& v, Eigen::VectorXd& w_out) {
+      w_out = v;
+      w_out.noalias() += E_transpose_ * v;
+    };
+    const auto S_times = [&](const Eigen::VectorXd& w, auto&& v_out) {
+      v_out = w;
+      v_out.noalias() += E_ * w;
+    };
+    // A x0 of the starting guess x0 = x, and g_w = S^T A x0, r_w = S^T b - g_w.
+    q_.head(n) = x;
+    A_.multiply(q_, Aq_);
+    const double x0_A_x0 = x.dot(Aq_.head(n));
+    S_transpose_times(Aq_.head(n), g_w_);
+    S_transpose_times(b, b_w_);
+    r_w_ = b_w_ - g_w_;
     // Per component: a dot product u . v over its unknowns (one component: the whole vector).
-    const auto per_component = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
-      std::vector<double> sum(C, 0.0);
+    const auto per_component = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v, std::vector<double>& sum) {
+      sum.assign(C, 0.0);
       if (C == 1) {
         sum[0] = u.dot(v);
-        return sum;
+        return;
       }
       for (Eigen::Index j = 0; j < n; ++j) sum[static_cast<std::size_t>(component_[static_cast<std::size_t>(j)])] += u[j] * v[j];
-      return sum;
     };
-    const std::vector<double> b_norm2 = per_component(b_w, b_w);
-    std::vector<double> threshold(C), residual_norm2 = per_component(r_w, r_w);
+    std::vector<double> b_norm2, residual_norm2, threshold(C), rz, rz_new, pAp, alpha(C), beta(C);
+    per_component(b_w_, b_w_, b_norm2);
+    per_component(r_w_, r_w_, residual_norm2);
     std::vector<char> active(C);
     for (std::size_t c = 0; c < C; ++c) {
       threshold[c] = std::max(tolerance_ * tolerance_ * b_norm2[c], std::numeric_limits<double>::min());
       active[c] = residual_norm2[c] >= threshold[c];
     }
     const auto any_active = [&] { return std::find(active.begin(), active.end(), 1) != active.end(); };
-    // v scaled by each component's step scalar (0 on the components that have converged, which
-    // then stay where they are).
-    const auto scaled = [&](const std::vector<double>& value, const Eigen::VectorXd& v) -> Eigen::VectorXd {
-      if (C == 1) return (active[0] ? value[0] : 0.0) * v;
-      Eigen::VectorXd result(n);
+    // target += value[c] v on each active component c (the converged ones then stay where they are).
+    const auto add_scaled = [&](const std::vector<double>& value, const Eigen::VectorXd& v, Eigen::VectorXd& target) {
+      if (C == 1) {
+        if (active[0]) target += value[0] * v;
+        return;
+      }
       for (Eigen::Index j = 0; j < n; ++j) {
         const auto c = static_cast<std::size_t>(component_[static_cast<std::size_t>(j)]);
-        result[j] = active[c] ? value[c] * v[j] : 0.0;
+        if (active[c]) target[j] += value[c] * v[j];
       }
-      return result;
     };
     iterations_ = 0;
+    dx_w_.setZero();
     if (any_active()) {
       // The correction is summed in the basis and mapped to the unknowns once, at the end.
-      Eigen::VectorXd z_w = inverse_diagonal_.cwiseProduct(r_w), p_w = z_w, dx_w = Eigen::VectorXd::Zero(n);
-      std::vector<double> rz = per_component(r_w, z_w), alpha(C), beta(C);
+      z_w_ = inverse_diagonal_.cwiseProduct(r_w_);
+      p_w_ = z_w_;
+      per_component(r_w_, z_w_, rz);
       int i = 0;
       while (i < max_iterations_) {
-        q.head(n) = S_times(p_w);
-        A_.multiply(q, Aq);
-        const Eigen::VectorXd Ap_w = S_transpose_times(Aq.head(n));
-        const std::vector<double> pAp = per_component(p_w, Ap_w);
+        S_times(p_w_, q_.head(n));
+        A_.multiply(q_, Aq_);
+        S_transpose_times(Aq_.head(n), Ap_w_);
+        per_component(p_w_, Ap_w_, pAp);
         for (std::size_t c = 0; c < C; ++c) alpha[c] = active[c] ? rz[c] / pAp[c] : 0.0;
-        dx_w += scaled(alpha, p_w);
-        r_w -= scaled(alpha, Ap_w);
-        residual_norm2 = per_component(r_w, r_w);
+        add_scaled(alpha, p_w_, dx_w_);
+        for (std::size_t c = 0; c < C; ++c) alpha[c] = -alpha[c];
+        add_scaled(alpha, Ap_w_, r_w_);
+        per_component(r_w_, r_w_, residual_norm2);
         for (std::size_t c = 0; c < C; ++c) active[c] = active[c] && residual_norm2[c] >= threshold[c];
         if (!any_active()) break;
-        z_w = inverse_diagonal_.cwiseProduct(r_w);
-        const std::vector<double> rz_new = per_component(r_w, z_w);
+        z_w_ = inverse_diagonal_.cwiseProduct(r_w_);
+        per_component(r_w_, z_w_, rz_new);
         for (std::size_t c = 0; c < C; ++c) beta[c] = active[c] ? rz_new[c] / rz[c] : 0.0;
-        rz = rz_new;
-        p_w = z_w + scaled(beta, p_w);
+        rz.swap(rz_new);
+        // p = z + beta p on the active components; the others' p is not read again.
+        if (C == 1) {
+          p_w_ = z_w_ + beta[0] * p_w_;
+        } else {
+          for (Eigen::Index j = 0; j < n; ++j) p_w_[j] = z_w_[j] + beta[static_cast<std::size_t>(component_[static_cast<std::size_t>(j)])] * p_w_[j];
+        }
         ++i;
       }
       iterations_ = i;
-      x_padded.head(n) += S_times(dx_w);
     }
     double b_total = 0.0, r_total = 0.0;
     for (std::size_t c = 0; c < C; ++c) {
       b_total += b_norm2[c];
       r_total += residual_norm2[c];
     }
-    x = x_padded.head(n);
+    // x = x0 + S dw.
+    S_times(dx_w_, q_.head(n));
+    x += q_.head(n);
     if (b_total == 0.0) {
       x.setZero();
       error_ = 0.0;
       return true;
     }
     error_ = std::sqrt(r_total / b_total);
-    // A proof of indefiniteness as above, from the residual of the unknowns (one more product).
-    x_padded.head(n) = x;
-    A_.multiply(x_padded, Aq);
-    const double residual_norm = (b - Aq.head(n)).norm();
-    if (b.dot(x) + x.norm() * residual_norm <= 0.0) throw NotPositiveDefinite(not_positive_definite);
+    // A proof of indefiniteness as in the unknowns, without another product: with x = x0 + S w
+    // and S^T A S w = b_w - g_w - r_w (r_w the iteration's residual in the basis),
+    // x^T A x = x0^T A x0 + w . g_w + w . b_w - w . r_w <= x0^T A x0 + w . (g_w + b_w) + |w| |r_w|.
+    if (x0_A_x0 + dx_w_.dot(g_w_ + b_w_) + dx_w_.norm() * r_w_.norm() <= 0.0) throw NotPositiveDefinite(not_positive_definite);
     return !any_active();
   }
 
@@ -275,6 +299,9 @@ private:
   std::vector<int> component_;    // per column of S_, its component
   int num_components_ = 0;
   Eigen::VectorXd inverse_diagonal_;
+  // solve_in_basis's vectors, kept from solve to solve: the unknowns padded to whole blocks (q_,
+  // Aq_) and the basis's (r_w_ residual, b_w_ = S^T b, g_w_ = S^T A x0, z_w_, p_w_, Ap_w_, dx_w_).
+  Eigen::VectorXd q_, Aq_, r_w_, b_w_, g_w_, z_w_, p_w_, Ap_w_, dx_w_;
   double tolerance_;
   int max_iterations_;
   int iterations_ = 0;
