@@ -147,10 +147,11 @@ void CrackTip::make_mesh() {
 // a corner of a tet the front passes through; it carries the four branch functions and no sign
 // enrichment. The other nodes chapter 4 enriched are *sign* nodes, as before. With r_e = 0 the
 // rule is Paulus's topological one; the default r_e (geometric enrichment) keeps a fixed region
-// around the front enriched as the mesh is refined, which is what restores the optimal rate
-// (Laborde et al. 2005; figures/05_crack_tip/convergence.md measures it).
+// around the front enriched as the mesh is refined, which Laborde et al. 2005 show restores the
+// optimal rate in 2D; here it raises the rate but does not quite reach it (1.66 and 1.71 in L2
+// on the last steps of figures/05_crack_tip/convergence.md, against 2: the results' known defects).
 //
-// Blending tets, those with some corners branch enriched and some not, spoil that rate: there
+// Blending tets, those with some corners branch enriched and some not, spoil the rate: there
 // the branch nodes' hats do not sum to one, so the enrichment is a fraction of F that the
 // standard functions cannot make up. With `"blending": "corrected"` the functions are
 // multiplied by Fries's ramp R, the sum of the branch nodes' hats, and every corner of a

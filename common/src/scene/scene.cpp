@@ -483,7 +483,7 @@ CrackTipSpec read_crack_tip(const ObjectReader& r) {
     c.fail("crack_tip.front_points", "expected an integer from 1 to 8 (points per direction of each collapsed sub-tet)");
   spec.front_grading = c.integer("front_grading", spec.front_grading);
   if (spec.front_grading < 0 || spec.front_grading > default_front_grading)
-    c.fail("crack_tip.front_grading", "expected an integer from 0 to 12 (halvings towards the front)");
+    c.fail("crack_tip.front_grading", "expected an integer from 0 to 12 (the most times the grading may split a part)");
   return spec;
 }
 

@@ -33,7 +33,9 @@ namespace kerf {
 /// HHT-alpha and the nonlinear step the balance holds by definition and proves nothing; there
 /// `numerical` is what to read: whatever the step did to the energy that neither the work nor the
 /// damping accounts for. On the nonlinear path that is the frozen-rotation step's error (O(dt)
-/// over a fixed time; negative when the step puts energy in), a moving clamp's motion that does not
+/// over a fixed time; negative when the step puts energy in) or, with a step solved at its end's
+/// rotations (checked, Newton), the average acceleration rule's on the corotated force (O(dt^2)),
+/// a moving clamp's motion that does not
 /// follow Newmark's updates, an iterative solve's tolerance, and (chapter 7) the change of the
 /// energies when a new model takes over the state. Damping is computed on its own in every
 /// scheme, so the damping column is the dissipation of C, and the numerical column the rest.

@@ -36,7 +36,9 @@ struct DynamicState {
 struct StepEnergy {
   double external_work = 0.0; ///< trapezoidal work of the load, (u_{n+1} - u_n) . (f_n + f_{n+1}) / 2
   double damping = 0.0;       ///< work the scheme's damping force did against the motion (>= 0)
-  double numerical = 0.0;     ///< energy the integrator itself removed (the rest of the balance, in closed form)
+  /// Energy the integrator itself removed: the rest of the balance, in closed form for Newmark,
+  /// the central difference and backward Euler, by construction for HHT-alpha (energy_account.hpp).
+  double numerical = 0.0;
 };
 
 /// The free-free blocks M_ff, C_ff, K_ff of a system and its load on the free DOFs, lifted:

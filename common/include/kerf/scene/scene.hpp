@@ -108,13 +108,14 @@ struct CrackTipSpec {
   std::string blending = "none";
   /// Points per direction of each collapsed sub-tet in the tets a front crosses (n^3 per
   /// sub-tet, CrackTipFunctions::front_points); 0, not given: the model's default (4 on a Tet4,
-  /// 6 on a Tet10). Chapter 7's rebuilds take 2: a tet its wavy sheet's front crosses splits into
-  /// about 1400 sub-tets, so 4 gives 90 000 points per tet.
+  /// 6 on a Tet10). The rule is graded within a budget of 192 n^3 points per piece
+  /// (front_quadrature.hpp), so fewer points make a cheaper, coarser rule: chapter 7's test of its
+  /// rebuilds takes 2 (0.63 s a change at 1000 tets, 2.6 s with the default).
   int front_points = 0;
-  /// How often the collapsed rule halves a face near the front's line at most
-  /// (CrackTipFunctions::front_grading, 0 to 12; default 12). Chapter 7's rebuilds take 4: where
-  /// a front made of small segments runs along the faces of a tet's cells, 12 gave one tet of
-  /// its 1000-tet liver 15 million points.
+  /// How often at most the collapsed rule's grading may split one part (a collapsed sub-tet's
+  /// face or edge near the front), CrackTipFunctions::front_grading, 0 to 12; default 12. The
+  /// grading stops before that where the piece's estimated error meets its goal or its points
+  /// reach the budget.
   int front_grading = 12;
   bool given = false; ///< the scene has a "crack_tip" field (chapters before 5 refuse it)
 };
