@@ -46,8 +46,8 @@ TEST_CASE("on a linear cut body with still clamps the nonlinear Newmark step is 
   system.internal_force = clamped_body::linear_force(K);
   system.elastic_energy = [&K](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
 
-  for (const kerf::RotationUpdate update : {kerf::RotationUpdate::frozen, kerf::RotationUpdate::newton}) {
-    CAPTURE(update == kerf::RotationUpdate::frozen ? "frozen" : "newton");
+  for (const kerf::RotationUpdate update : {kerf::RotationUpdate::frozen, kerf::RotationUpdate::checked, kerf::RotationUpdate::newton}) {
+    CAPTURE(update == kerf::RotationUpdate::frozen ? "frozen" : update == kerf::RotationUpdate::checked ? "checked" : "newton");
     kerf::NonlinearNewmarkSettings settings;
     settings.update = update;
     settings.tolerance = 1e-10;
@@ -202,4 +202,33 @@ TEST_CASE("the step does not depend on the order in which the DofMap numbers its
   // The same equations solved by a direct solver on a permuted matrix: round-off apart.
   CHECK((state_reversed.u - state.u).norm() <= 1e-10 * state.u.norm());
   CHECK((state_reversed.a - state.a).norm() <= 1e-10 * state.a.norm());
+}
+
+TEST_CASE("a free DOF without mass: the start's acceleration is refused, naming the mass matrix") {
+  // Two nodes' worth of DOFs, one free DOF with no mass: M_ff is singular, and the start's
+  // a = M_ff^-1 (f - f_int)_f does not exist. The message must say so, not speak of stiffness.
+  const Eigen::Index size = 6;
+  Eigen::SparseMatrix<double> M(size, size), K(size, size);
+  for (Eigen::Index i = 0; i < size; ++i) {
+    M.insert(i, i) = i == 4 ? 0.0 : 1.0;
+    K.insert(i, i) = 10.0;
+  }
+  M.makeCompressed();
+  K.makeCompressed();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(size);
+  kerf::NonlinearDynamicSystem system;
+  system.M = M;
+  system.dofs = kerf::make_dof_map(2, {});
+  system.load = [zero](double) { return zero; };
+  system.motion = [zero](double) { return kerf::PrescribedMotion{zero, zero, zero}; };
+  system.internal_force = clamped_body::linear_force(K);
+  system.elastic_energy = [&K](const Eigen::VectorXd& u) { return 0.5 * u.dot(K * u); };
+  for (const char* solver : {"ldlt", "cg-jacobi"}) {
+    CAPTURE(solver);
+    kerf::NonlinearNewmarkSettings settings;
+    settings.solver.type = solver;
+    kerf::NonlinearNewmarkIntegrator integrator(system, 0.01, settings);
+    CHECK_THROWS_WITH_AS(integrator.initial_state(zero, zero, 0.0),
+                         doctest::Contains("the mass matrix M_ff on 6 free DOFs is not positive definite"), kerf::NotPositiveDefinite);
+  }
 }

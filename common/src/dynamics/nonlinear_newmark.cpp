@@ -158,7 +158,13 @@ DynamicState NonlinearNewmarkIntegrator::initial_state(const Eigen::VectorXd& u0
   const Eigen::VectorXd a_c = combine(Eigen::VectorXd::Zero(P_.rows()), motion.a);
   const Eigen::VectorXd rhs = P_ * (system_.load(t0) - system_.M * a_c - damping_force(*K, state.v) - f_int);
   Eigen::VectorXd a_f;
-  solve(free_block(system_.M), rhs, a_f);
+  try {
+    solve(free_block(system_.M), rhs, a_f);
+  } catch (const NotPositiveDefinite&) {
+    throw NotPositiveDefinite("the mass matrix M_ff on " + std::to_string(rhs.size()) + " free DOFs is not positive definite (solver " +
+                              solver_->name() + "): a free DOF carries no mass (a piece of zero volume, or a lumping with a "
+                              "non-positive entry), and the start's acceleration is not defined there");
+  }
   analysed_ = false; // the mass alone may have a smaller pattern than the step's matrix
   state.a = combine(a_f, motion.a);
   return state;
