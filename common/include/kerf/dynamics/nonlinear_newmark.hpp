@@ -139,7 +139,8 @@ public:
   /// model changes between steps (chapter 7: the blade cuts the body as this step leaves it,
   /// before the next step), which closes the step with the integrator of the new model: its
   /// kinetic energy and W at the carried-over state. The new model assembles there for the next
-  /// step's start anyway, so the old one need not assemble at u_{n+1} too. Where the new model
+  /// step's start anyway, so the step's energies need no assembly of the old one at u_{n+1} (a
+  /// checked step has made one for its check, which the new model's replaces). Where the new model
   /// holds the same field (cut_state_transfer.hpp) the energies are the old ones to round-off;
   /// where it does not (a fit near a crack front) their change shows in the step's numerical rest.
   NonlinearStepReport open_step(DynamicState& state);
