@@ -77,7 +77,7 @@ FrontSegment make_segment(const Eigen::Vector3d& start, const Eigen::Vector3d& e
   s.a = s.b.cross(s.c);
   s.start = start;
   s.end = end;
-  // a must point ahead, away from the triangle (notes 5.3): else flip a and c together.
+  // a must point ahead, away from the triangle (Moes et al. 1999): else flip a and c together.
   if (s.a.dot(start - opposite) < 0.0) {
     s.a = -s.a;
     s.c = -s.c;

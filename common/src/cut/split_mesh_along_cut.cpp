@@ -43,7 +43,7 @@ void check_conforms(const TetMesh& mesh, const RectangleCut& cut, const std::vec
     throw std::invalid_argument("split_mesh_along_cut: tet " + std::to_string(t) +
                                 " has corners on both sides of the cut's plane and its section by the plane overlaps the "
                                 "rectangle: the mesh does not conform to the cut (it needs a node layer on the cut, "
-                                "Paper 000 section 6.1)");
+                                "Schoch et al. section 6.1)");
 }
 
 } // namespace

@@ -345,7 +345,7 @@ std::vector<CutSpec> read_cuts(const ObjectReader& r, const std::filesystem::pat
 }
 
 /// "time": static, or a time integrator with its step, count, parameters, mass and damping
-/// (chapter 6, notes 6.3). Each integrator takes only the fields that mean something for it, and
+/// (chapter 6). Each integrator takes only the fields that mean something for it, and
 /// a Newmark or HHT pair outside its unconditionally stable range is refused unless
 /// "allow_unstable" says it is meant (the chapter charts what happens then).
 TimeSpec read_time(const ObjectReader& r) {

@@ -82,8 +82,8 @@ BranchEnrichment make_branch_enrichment(const TetMesh& mesh, const MeshPieces& p
   // The tets the front passes through. Every tet is asked, not only those a cut triangle meets
   // (pieces.entry_tet): a cut lying in a plane of mesh faces meets the tets on one side of it
   // only (chapter 4 gives the face to one side), while a front lying in such a face belongs to
-  // the tets on both sides (the header's rule; the tets below were missed before, issue 10
-  // item 6, tests/chapter_05/test_front_degenerate.cpp).
+  // the tets on both sides (the header's rule; the tets below were missed before,
+  // tests/chapter_05/test_front_degenerate.cpp).
   // A box around the fronts rejects the far tets before the exact clipping.
   Eigen::Vector3d front_low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), front_high = -front_low;
   for (const FrontPolyline& line : fronts.polylines)

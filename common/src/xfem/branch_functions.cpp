@@ -10,7 +10,7 @@ Eigen::Vector4d branch_function_values(double r, double theta) {
 }
 
 Eigen::Matrix<double, 4, 2> branch_function_frame_derivatives(double r, double theta) {
-  // Notes 5.3: with x_a = r cos(theta), x_b = r sin(theta), d/dx_a = cos(theta) d/dr -
+  // With x_a = r cos(theta), x_b = r sin(theta), d/dx_a = cos(theta) d/dr -
   // sin(theta)/r d/dtheta and d/dx_b = sin(theta) d/dr + cos(theta)/r d/dtheta, applied to
   // sqrt(r) g(theta), and simplified with the half-angle identities.
   const double k = 0.5 / std::sqrt(r);

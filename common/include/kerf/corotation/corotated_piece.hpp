@@ -1,6 +1,6 @@
 /// @file corotated_piece.hpp
 /// @brief A corotated element on general "slots" with one rotation for the whole piece: how
-///        chapter 5 turns a tet with crack-tip functions with the tissue (issue 10, item 7).
+///        chapter 5 turns a tet with crack-tip functions with the tissue.
 ///
 /// corotated_element.hpp rotates one quadrature point of an ordinary element: its shape gradients
 /// G are constant there, and F = I + u^T G. A tet with branch functions has, besides its nodes'

@@ -16,7 +16,7 @@ namespace kerf {
 ///
 /// The solver only ever asks for the residual and the tangent at a state u, so one interface of
 /// three questions lets the same Newton iteration, load stepping and fallback serve both; the
-/// XFEM body differs only in its unknowns, [u; a] instead of u (Paper 000 eq. 74).
+/// XFEM body differs only in its unknowns, [u; a] instead of u (Schoch et al. eq. 74).
 class QuasiStaticModel {
 public:
   virtual ~QuasiStaticModel() = default;

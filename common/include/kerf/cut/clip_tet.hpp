@@ -1,5 +1,5 @@
 /// @file clip_tet.hpp
-/// @brief Split one tet by a plane into sub-tetrahedra above and below it (Paper 000 section 5.2's element subdivision).
+/// @brief Split one tet by a plane into sub-tetrahedra above and below it (Schoch et al. section 5.2's element subdivision).
 #pragma once
 
 #include "kerf/cut/tet_cut_classification.hpp"
@@ -12,7 +12,7 @@ namespace kerf {
 /// The two parts of a tet on either side of the plane Lambda = 0, each as a list of
 /// sub-tetrahedra, and the polygon in which the plane cuts the tet.
 ///
-/// Paper 000 (section 5.2): "the two subelements obtained from this subdivision process are not
+/// Schoch et al. (section 5.2): "the two subelements obtained from this subdivision process are not
 /// necessarily tetrahedra anymore, which is why we choose to again subdivide these subelements
 /// until they represent smaller tetrahedra, such that on the subelement-level we can apply the
 /// same functions on them as on the element level."
@@ -60,7 +60,7 @@ double polygon_area(const std::vector<Eigen::Vector3d>& polygon);
 /// Why a threshold at all: for the shifted Heaviside enrichment, the enriched shape function
 /// of a node on the big side lives only on the small piece, so its diagonal stiffness entry
 /// scales with the piece's volume fraction, and the condition number of the enriched block grows
-/// like 1 / fraction. Paper 000 (section 5.2) guards against this with "a minimum distance
+/// like 1 / fraction. Schoch et al. (section 5.2) guard against this with "a minimum distance
 /// between an element node and a cut, until which we define the element not to be cut"; a
 /// volume fraction says the same thing independent of the element's size. 1e-4 keeps the
 /// condition number within about four orders of magnitude of the uncut element's. The number

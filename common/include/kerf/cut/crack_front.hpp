@@ -1,23 +1,24 @@
 /// @file crack_front.hpp
-/// @brief The fronts of the cut surfaces inside a mesh, as oriented polylines with a frame, and the polar coordinates (r, theta) of a point about them (Paulus section 3.4, notes 5.3).
+/// @brief The fronts of the cut surfaces inside a mesh, as oriented polylines with a frame, and the polar coordinates (r, theta) of a point about them (Paulus et al., section 3.4).
 ///
 /// A cut surface that ends inside the tissue ends along its front: the part of the surface's
 /// boundary (its edges that belong to one triangle only) that lies inside the mesh. Boundary
 /// edges outside the mesh, or lying in the mesh's surface (a cut that ends exactly at the
 /// body's skin), are not front: the cut is open there, not stopped.
 ///
-/// The frame (notes 5.3, the resolution of Paulus's garbled formulas): on each front segment
+/// The frame (Paulus et al., section 3.4, whose printed formulas are garbled; theta by atan2, the
+/// usual reading, as in Moes et al. 1999 and Sukumar et al. 2000): on each front segment
 ///   b = the unit normal of the cut triangle the segment bounds (the side Kerf calls above),
 ///   a = b x c, pointing AHEAD of the front into uncut material,
 ///   c = along the front,
 /// where c is the edge's direction, and a and c are flipped together when a would point back
-/// into the triangle (notes 5.3, "orientation of a"), so (a, b, c) stays right-handed. Then the
-/// cut lies at theta = +-pi, theta > 0 is the side above the cut (H = +1), theta < 0 below.
+/// into the triangle (the paper does not orient a; this is the usual choice), so (a, b, c) stays
+/// right-handed. Then the cut lies at theta = +-pi, theta > 0 is the side above the cut (H = +1), theta < 0 below.
 ///
 /// Polar coordinates, and why they are continuous along a curved front. Paulus takes the
 /// closest point of the front and the frame of its segment. On a polyline that frame jumps at
-/// every vertex, so theta jumps on the planes where the closest segment changes (notes 5.3,
-/// "curved or kinked fronts", and 5.9 item 6). Kerf makes the frame continuous instead:
+/// every vertex, so theta jumps on the planes where the closest segment changes (the paper
+/// does not treat curved or kinked fronts). Kerf makes the frame continuous instead:
 /// - each vertex gets a frame of its own, c_v the normalised sum of its two segments' c, b_v the
 ///   normalised sum of their b (a polyline's end keeps its segment's frame);
 /// - along segment k, c(t) and b(t) are interpolated linearly between the vertex frames and
@@ -96,7 +97,7 @@ struct CrackFronts {
   /// @param cut_side 0 for a point anywhere; +1 or -1 for a point known to lie ON the cut, on the
   ///                 face above (+1) or below (-1): theta is then set to cut_side * pi whatever
   ///                 the round-off in x_b, so that F_1 = sqrt(r) sin(theta / 2) takes the value
-  ///                 of that side (notes 5.3: F_1 is two-valued at a node on the cut, and the
+  ///                 of that side (F_1 is two-valued at a node on the cut, and the
   ///                 node's value must be that of its Heaviside side)
   /// @throws std::logic_error if there is no front
   FrontPolar polar(const Eigen::Vector3d& x, int cut_side = 0) const;

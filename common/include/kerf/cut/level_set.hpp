@@ -1,5 +1,5 @@
 /// @file level_set.hpp
-/// @brief Nodal level set values Lambda_i of a plane cut (Paper 000 eq. 72), snapped to zero near the plane.
+/// @brief Nodal level set values Lambda_i of a plane cut (Schoch et al. eq. 72), snapped to zero near the plane.
 #pragma once
 
 #include "kerf/cut/rectangle_cut.hpp"
@@ -9,7 +9,7 @@
 
 namespace kerf {
 
-/// The level set of a cut sampled at the nodes, Lambda_i = Lambda(x_i) (Paper 000, eq. 72),
+/// The level set of a cut sampled at the nodes, Lambda_i = Lambda(x_i) (Schoch et al., eq. 72),
 /// with the sign of each node.
 ///
 /// Values with |Lambda_i| <= snap_tolerance are stored as exactly 0. A node that lies on the
@@ -18,7 +18,7 @@ namespace kerf {
 /// be classified as cut or uncut at random. After snapping, "the cut passes through this node"
 /// is a fact that the classification (tet_cut_classification.hpp) handles as its own case.
 ///
-/// The default tolerance is far below Paper 000's "minimum distance between an element node
+/// The default tolerance is far below Schoch et al.'s "minimum distance between an element node
 /// and a cut, until which we define the element not to be cut" (section 5.2): it only removes
 /// round-off. Ill-conditioning from tiny pieces is handled by the volume-fraction rule in
 /// clip_tet.hpp; pass a larger tolerance to reproduce the paper's minimum-distance rule.

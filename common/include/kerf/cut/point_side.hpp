@@ -1,8 +1,8 @@
 /// @file point_side.hpp
 /// @brief Which side of a triangle-mesh cut a point lies on: Paulus's closest-triangle test, and the exact sign from angle-weighted pseudo-normals (Baerentzen and Aanaes 2005).
 ///
-/// Koschier's signed distance (eq. 9) needs a sign s(x) that the paper does not define (notes
-/// 4.1). Paulus et al. (section 4.1) take the triangle closest to x and the sign of
+/// Koschier's signed distance (eq. 9) needs a sign s(x) that the paper does not define.
+/// Paulus et al. (section 4.1) take the triangle closest to x and the sign of
 /// (x - P_0) . n of that triangle. Near a kink this can be wrong: when the closest point is on
 /// the kink's edge (or a vertex), two or more triangles are equally close, and the plane of
 /// the one picked need not separate x from the surface. It is wrong exactly when the fold is

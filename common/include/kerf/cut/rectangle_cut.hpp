@@ -2,7 +2,7 @@
 /// @brief A planar rectangular cut surface: the plane it spans, signed distances to that plane, and the rectangle itself.
 ///
 /// The `cut` area is pure geometry: it knows nothing about enrichment. A rectangle is all the
-/// papers' experiments need (Paper 000, section 5.2: "a cut, represented by a simple 2D plane
+/// papers' experiments need (Schoch et al., section 5.2: "a cut, represented by a simple 2D plane
 /// in 3D space"), and a plane needs nothing beyond Eigen. CGAL enters this area later, with
 /// cut surfaces given as triangle meshes, where exact predicates and AABB trees pay for their
 /// compile time.
@@ -17,16 +17,16 @@ namespace kerf {
 /// `cuts[i].rectangle`, and the plane through it.
 ///
 /// Orientation: the unit normal is n = edge1 x edge2 / |edge1 x edge2|, and "above" (the
-/// positive side, Omega+ in Paper 003 section 3.2) is the side n points to.
+/// positive side, Omega+ in Paulus et al. section 3.2) is the side n points to.
 ///
-/// Eq. 72 of Paper 000 defines the level set as the signed distance to the cut surface
+/// Eq. 72 of Schoch et al. define the level set as the signed distance to the cut surface
 /// Gamma_cut, i.e. to the rectangle as a bounded set. For deciding on which side of a plane cut
 /// a point lies (the classification of a tet, eq. 73, and the sign of the Heaviside
 /// enrichment), only the sign matters, and the sign is that of the distance to the PLANE: it is
 /// also the only choice whose nodal values interpolate linearly to the exact cut inside a Tet4.
 /// So we keep both: signed_distance_to_plane() for the level set, distance_to_rectangle() for
 /// the Euclidean distance to the bounded cut, and contains_projection() to tell whether a point
-/// of the plane belongs to the cut itself (Paper 003's partially / completely cut elements).
+/// of the plane belongs to the cut itself (Paulus et al.'s partially / completely cut elements).
 class RectangleCut {
 public:
   /// @param origin one corner of the rectangle (m)
@@ -53,7 +53,7 @@ public:
   /// enlarged by `tolerance` on every side.
   /// @param x         the point (m); its distance to the plane does not matter
   /// @param tolerance how far outside the rectangle the projection may lie and still count as
-  ///                  inside (m); points on the boundary count as inside, as Paper 003 uses the
+  ///                  inside (m); points on the boundary count as inside, as Paulus et al. use the
   ///                  closure of the cut
   bool contains_projection(const Eigen::Vector3d& x, double tolerance) const;
 

@@ -4,7 +4,7 @@
 /// A progressive cut that splits an element as soon as the blade enters it makes many tiny
 /// faces; Gutierrez and Ramos (section 3.3, Figs. 6 and 14) wait "until the tool crosses the whole
 /// element". They keep lists L1, L2, L3 of the tets with 1, 2, 3 crossed edges and cut a tet of
-/// L3. We keep their idea with three changes (the notes on chapter 7, section 7.2):
+/// L3. We keep their idea with three changes of our own:
 /// - crossings belong to the mesh's *edges*, not to (tet, edge) pairs: an edge is crossed once,
 ///   its crossing point recorded then and never moved, so a blade that trembles back over an
 ///   edge cannot cut twice (G's "three intersections must be in different edges");
@@ -62,7 +62,7 @@ struct EdgeTriangleContact {
 /// @param triangle a non-degenerate triangle of the swept sheet (m, reference configuration)
 EdgeTriangleContact edge_triangle_contact(const SweptTriangle& triangle, const Eigen::Vector3d& x_a, const Eigen::Vector3d& x_b);
 
-/// The tet test of the semi-progressive cut (notes 7.2; it replaces Gutierrez and Ramos's "third
+/// The tet test of the semi-progressive cut (Kerf's own; it replaces Gutierrez and Ramos's "third
 /// crossed edge", section 3.3): whether the sheet has crossed a tet. The corners that are not on
 /// the sheet, joined by the tet's edges that are not crossed and have neither end on the sheet,
 /// fall into two or more groups. A planar sheet separates them with 3 crossed edges around a
@@ -77,7 +77,7 @@ bool tet_corners_separated(const std::array<bool, 6>& edge_crossed, const std::a
 /// crossed tets, updated one swept sheet (a frame's quad) at a time.
 ///
 /// Everything lives in the reference configuration: the triangles handed in must already be
-/// pulled back from the world, if the mesh has moved (notes, section 7.2).
+/// pulled back from the world, if the mesh has moved (Koschier et al. 2017, Fig. 2).
 class SemiProgressiveCut {
 public:
   /// Builds the edge structure once: the #E unique edges of the corners (a Tet10's edges are

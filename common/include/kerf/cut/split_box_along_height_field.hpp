@@ -30,7 +30,7 @@ struct HeightFieldSplitMesh {
 /// whole cross-section, and disconnects the two parts along the cut.
 ///
 /// Why: chapter 4 compares XFEM on box meshes that ignore a curved cut with plain FEM on a mesh
-/// that follows it and is opened along it (Paper 000, section 6.1's "perfectly remeshed" cut),
+/// that follows it and is opened along it (Schoch et al., section 6.1's "perfectly remeshed" cut),
 /// as chapter 3 did for a plane with split_mesh_along_cut().
 ///
 /// Construction, in four steps:

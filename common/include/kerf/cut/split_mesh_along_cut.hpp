@@ -24,7 +24,7 @@ struct SplitMesh {
 /// already follow the cut, by giving the tets below the cut their own copies of the nodes on it.
 ///
 /// Why: XFEM's answer to "what does the cut body do" needs a reference that does not use XFEM.
-/// Paper 000 (section 6.1) validates against "input files where the cut is already perfectly
+/// Schoch et al. (section 6.1) validate against "input files where the cut is already perfectly
 /// remeshed, i.e., where the elements on either side of the cut are disconnected and aligned
 /// with the cut's course". A mesh with a node layer on the cut plane is aligned with it;
 /// duplicating the nodes on the cut disconnects it, and a plain FEM solve (or CalculiX) on the

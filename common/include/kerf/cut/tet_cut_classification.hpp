@@ -1,6 +1,6 @@
 /// @file tet_cut_classification.hpp
-/// @brief How a cut meets a tet: the case of its sign pattern (Paper 000 section 5.2, eq. 73) and, for a bounded
-///        rectangle, whether it is uncut, touched, partially or completely cut (Paper 003 section 3.3).
+/// @brief How a cut meets a tet: the case of its sign pattern (Schoch et al. section 5.2, eq. 73) and, for a bounded
+///        rectangle, whether it is uncut, touched, partially or completely cut (Paulus et al. section 3.3).
 #pragma once
 
 #include "kerf/cut/level_set.hpp"
@@ -42,7 +42,7 @@ namespace kerf {
 ///
 /// Patterns 10-15 hold both a + and a - corner and are genuinely cut: min Lambda * max Lambda < 0,
 /// which is eq. 73's set M_Lambda of cut elements. Patterns 1-9 are not cut; 3-8 are "only
-/// touched along an edge or a face" (or a corner). Paper 000 counts "8 different ways, 4 of which
+/// touched along an edge or a face" (or a corner). Schoch et al. count "8 different ways, 4 of which
 /// actually leave the element only touched" without listing them; we read them as our eight
 /// non-degenerate cases up to the choice of side: the four cut ones, and four that are not cut
 /// (uncut, touched at a corner, along an edge, along a face). The paper's own example,
@@ -75,7 +75,7 @@ inline bool is_cut(TetCutCase c) { return c >= TetCutCase::cut_one_vertex_apart;
 /// The enumerator's name, "cut_two_two" and so on, for reports and messages.
 const char* to_string(TetCutCase c);
 
-/// How a BOUNDED cut (a rectangle, not its whole plane) meets an element, after Paper 003
+/// How a BOUNDED cut (a rectangle, not its whole plane) meets an element, after Paulus et al.
 /// section 3.3: an edge is cut if it meets the closed cut, a face is completely cut if two of
 /// its edges are cut, and the element is uncut (no cut edges), partially cut (cut edges, but
 /// fewer than three completely cut faces: the cut's boundary runs through the element) or
@@ -90,10 +90,10 @@ const char* to_string(TetCutCase c);
 ///   "cut points", are the crossings of edges with a + and a - end and the corners with
 ///   Lambda = 0. Every separated face (one with both signs) is crossed by a segment between two
 ///   cut points, and it is completely cut when both lie in the rectangle. Without zeros this is
-///   Paper 003's rule word for word: the cut points are the cut edges. With zeros, a corner on
+///   Paulus et al.'s rule word for word: the cut points are the cut edges. With zeros, a corner on
 ///   the plane stands for the edges through it.
 /// - The element is completely cut when ALL its separated faces are completely cut, which is
-///   the same as: every cut point lies in the rectangle. For patterns 10-13 this is Paper 003's
+///   the same as: every cut point lies in the rectangle. For patterns 10-13 this is Paulus et al.'s
 ///   ">= 3 completely cut faces" (a tet of pattern 10/11 or 13/14 has exactly 3 separated faces;
 ///   one of pattern 12 has 4, and each cut point lies on two of them, so one point outside
 ///   leaves 2, never 3). Pattern 15 has only 2 separated faces, so ">= 3" could never hold and

@@ -1,5 +1,5 @@
 /// @file backward_euler.hpp
-/// @brief Backward (implicit) Euler for M a + C v + K u = f(t): Koschier's integrator (Paper 002 sections 4.1, 7), first order and dissipative.
+/// @brief Backward (implicit) Euler for M a + C v + K u = f(t): Koschier's integrator (Koschier et al. sections 4.1, 7), first order and dissipative.
 #pragma once
 
 #include "kerf/dynamics/linear_dynamic_system.hpp"

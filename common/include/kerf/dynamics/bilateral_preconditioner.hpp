@@ -1,5 +1,5 @@
 /// @file bilateral_preconditioner.hpp
-/// @brief Diagonal preconditioners applied on both sides, T^T A T y = T^T c, x = T y (Paper 002 eqs. 23-27): Koschier's from the enrichment volumes, and plain Jacobi scaling beside it.
+/// @brief Diagonal preconditioners applied on both sides, T^T A T y = T^T c, x = T y (Koschier et al. eqs. 23-27): Koschier's from the enrichment volumes, and plain Jacobi scaling beside it.
 #pragma once
 
 #include "kerf/solve/linear_solver.hpp"
@@ -16,15 +16,15 @@ namespace kerf {
 ///   T_{d_ik, d_ik} = 1 / sqrt(v_ik),   v_ik = V_{i,k,enr} / V_{i,supp},          (eqs. 26, 27)
 ///
 /// the same value on the three components of enrichment k's DOF, and 1 on the standard DOFs
-/// (the paper does not say; 1 is implied, notes 6.4). Eq. 26 prints V_{i,j}: it means the ratio
-/// v of eq. 27 (notes 6.7, item 9), which makes T independent of the body's size. The volumes
+/// (the paper does not say; 1 is implied). Eq. 26 prints V_{i,j}: it means the ratio
+/// v of eq. 27, which makes T independent of the body's size. The volumes
 /// are those the rules' weights give (CutXfemModel::enrichment_volumes), as Koschier sums them.
 ///
 /// Why it helps: the rows of an enrichment whose function acts on a small part v of its
 /// node's support are small, of the order of v; scaling them by 1 / v brings them to the order
 /// of the standard rows. It cannot cure an enrichment on a sliver far from its node, whose rows
 /// fall faster than v (N_i is small there too), nor the near-dependence of u_i and a_ik when
-/// the node's own part is the small one (notes 6.4): eq. 22 constrains the former, nothing in
+/// the node's own part is the small one: eq. 22 constrains the former, nothing in
 /// the paper the latter.
 ///
 /// @param volumes   V_enr and V_supp of every enrichment

@@ -12,7 +12,7 @@ namespace kerf {
 /// stiffness is factorised, which is what makes it explicit. (Stiffness damping beta K puts K
 /// back into the matrix; it stays correct, just not cheap.)
 ///
-/// Stable only for dt <= 2 / omega_max (Paper 000 section 3.5: a real-time run needs
+/// Stable only for dt <= 2 / omega_max (Schoch et al. section 3.5: a real-time run needs
 /// dt_compute < dt_step < dt_crit). The constructor estimates omega_max by power iteration
 /// (critical_time_step.hpp) and refuses a larger step unless told to go on: above it the top
 /// mode grows by |z| = (b + sqrt(b^2 - 4)) / 2, b = omega^2 dt^2 - 2, every step.

@@ -9,7 +9,7 @@
 
 namespace kerf {
 
-/// HHT-alpha (notes 6.3, [standard]; Hughes 2000, section 9.3.3) with alpha in [-1/3, 0]:
+/// HHT-alpha (Hilber, Hughes and Taylor 1977; Hughes 2000, section 9.3.3) with alpha in [-1/3, 0]:
 ///
 ///   M a_{n+1} + (1 + alpha)(C v_{n+1} + K u_{n+1}) - alpha (C v_n + K u_n) = (1 + alpha) f_{n+1} - alpha f_n,
 ///

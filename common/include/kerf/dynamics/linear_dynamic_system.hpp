@@ -1,5 +1,5 @@
 /// @file linear_dynamic_system.hpp
-/// @brief The semi-discrete equations M a + C v + K u = f(t) with Dirichlet DOFs (Paper 000 eq. 25), their state,
+/// @brief The semi-discrete equations M a + C v + K u = f(t) with Dirichlet DOFs (Schoch et al. eq. 25), their state,
 ///        and the free-free blocks every integrator steps.
 #pragma once
 

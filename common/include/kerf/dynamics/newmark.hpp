@@ -1,5 +1,5 @@
 /// @file newmark.hpp
-/// @brief Newmark's family of implicit integrators for M a + C v + K u = f(t) (Paper 000 section 3.5; notes 6.3).
+/// @brief Newmark's family of implicit integrators for M a + C v + K u = f(t) (Schoch et al. section 3.5; Bathe's form, as the paper refers to Bathe).
 #pragma once
 
 #include "kerf/dynamics/linear_dynamic_system.hpp"
@@ -39,7 +39,7 @@ DynamicState newmark_correct(const ReducedDynamicSystem& reduced, double t_next,
 ///   solve     (M + gamma dt C + beta dt^2 K) a_{n+1} = f_{n+1} - C v~ - K u~,
 ///   correct   u_{n+1} = u~ + beta dt^2 a_{n+1},            v_{n+1} = v~ + gamma dt a_{n+1}.
 ///
-/// The matrix is Bathe's K^ = K + a0 M + a1 C divided by a0 = 1 / (beta dt^2) (notes 6.3): the same
+/// The matrix is Bathe's K^ = K + a0 M + a1 C divided by a0 = 1 / (beta dt^2): the same
 /// steps, with the acceleration as the unknown, so that beta = 0 needs no special case. It is
 /// factorised once, in the constructor.
 ///

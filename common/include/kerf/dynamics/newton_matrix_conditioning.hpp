@@ -1,5 +1,5 @@
 /// @file newton_matrix_conditioning.hpp
-/// @brief The 2-norm condition number of the implicit step's matrix A = M + dt^2 K of a cut body, bare, Jacobi-scaled, with Koschier's preconditioner, with his constraining too (Paper 002 section 6, Fig. 14), and in the part basis.
+/// @brief The 2-norm condition number of the implicit step's matrix A = M + dt^2 K of a cut body, bare, Jacobi-scaled, with Koschier's preconditioner, with his constraining too (Koschier et al. section 6, Fig. 14), and in the part basis.
 #pragma once
 
 #include "kerf/xfem/cut_xfem_model.hpp"
@@ -17,7 +17,7 @@ double spectral_condition_number(const Eigen::MatrixXd& A);
 
 /// The condition numbers of Koschier's Fig. 14 experiment for one cut body (dense: for small
 /// bodies such as the five-tet cube). A = M + dt^2 K on the free DOFs is the Newton matrix of a
-/// backward Euler step without damping (Paper 002 section 7); K is the linear XFEM stiffness,
+/// backward Euler step without damping (Koschier et al. section 7); K is the linear XFEM stiffness,
 /// M the consistent XFEM mass. The body is free (no Dirichlet condition), as Koschier's cube.
 struct NewtonMatrixConditioning {
   double plain = 0.0;               ///< kappa(A), enrichments with v <= 0 constrained only

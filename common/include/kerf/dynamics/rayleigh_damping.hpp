@@ -1,5 +1,5 @@
 /// @file rayleigh_damping.hpp
-/// @brief Rayleigh damping C = alpha M + beta K (Paper 000 eq. 20).
+/// @brief Rayleigh damping C = alpha M + beta K (Schoch et al. eq. 20).
 #pragma once
 
 #include <Eigen/SparseCore>
@@ -10,10 +10,9 @@ namespace kerf {
 ///
 /// A mode of frequency omega (K phi = omega^2 M phi) is damped with the ratio
 /// xi = alpha / (2 omega) + beta omega / 2: alpha damps the slow modes (and a rigid motion: it is
-/// a drag on every velocity, rigid ones included), beta the fast ones. The papers give no values
-/// (notes 6.7, item 2).
+/// a drag on every velocity, rigid ones included), beta the fast ones. The papers give no values.
 ///
-/// With corotation K is the current rotated stiffness K_R = R K R^T of the step (notes 6.3, as
+/// With corotation K is the current rotated stiffness K_R = R K R^T of the step (as
 /// in SOFA and Vega: the papers do not say), so that beta damps the rate of strain and not a
 /// rigid rotation; rebuild C whenever K_R is rebuilt.
 /// @param M mass (any size, square)

@@ -1,10 +1,10 @@
 /// @file williams_field.hpp
 /// @brief Williams's near-front field of a straight crack front in closed form: displacement, its gradient and the stress.
 ///
-/// Chapter 5's validation field (notes 5.7): the leading term of the elastic field near a
+/// Chapter 5's validation field (not in the papers): the leading term of the elastic field near a
 /// straight crack front, plane strain for modes I and II and antiplane shear for mode III, with
 /// stress intensity factors K_I, K_II, K_III (Pa sqrt(m)). It is written in the front frame of
-/// notes 5.3: `a` points ahead of the front into uncut material, `b` is the unit normal of the cut
+/// crack_front.hpp: `a` points ahead of the front into uncut material, `b` is the unit normal of the cut
 /// (theta > 0 on its + side), `c = a x b` runs along the front, and
 ///     r = sqrt(x_a^2 + x_b^2),  theta = atan2(x_b, x_a) in (-pi, pi],
 /// so the cut faces are theta = +-pi. With mu the shear modulus, kappa = 3 - 4 nu (plane

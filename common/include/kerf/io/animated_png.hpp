@@ -1,7 +1,7 @@
 /// @file animated_png.hpp
 /// @brief PNG frames of one size joined into one animated PNG (APNG), without decoding them.
 ///
-/// The issue asks for a short film of the cut; Debian's ffmpeg would make one, at the price of a
+/// Chapter 7 shows a short film of the cut; Debian's ffmpeg would make one, at the price of a
 /// large dependency for one file. An animated PNG (the APNG extension of PNG, which every current
 /// web browser plays, and which a viewer without it shows as its first frame) needs none: its
 /// frames are the PNGs' own compressed image data, moved into frame chunks. So we copy each

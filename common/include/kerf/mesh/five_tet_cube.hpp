@@ -9,8 +9,8 @@
 namespace kerf {
 
 /// The box [min, max] as five Tet4, the split Koschier et al. use for their cube experiments
-/// (Paper 002, section 7, Figs. 10 and 14; which of the two five-tet splits is not stated,
-/// notes 6.5, so we take the one below).
+/// (Koschier et al., section 7, Figs. 10 and 14; which of the two five-tet splits is not stated,
+/// so we take the one below).
 ///
 /// Corner c of the box has the offsets (c & 1, (c >> 1) & 1, (c >> 2) & 1) from min, in units
 /// of the box's edges; node c is corner c (8 nodes). The corners of even parity, 0, 3, 5 and 6,

@@ -1,5 +1,5 @@
 /// @file koschier_moment_fitting.hpp
-/// @brief Koschier's moment fitting as printed (section 5, eqs. 14-21), with the notes' corrections: moments from fitted face and interface rules.
+/// @brief Koschier's moment fitting as printed (section 5, eqs. 14-21), with corrections to the printed equations: moments from fitted face and interface rules.
 ///
 /// The volume rule is the one of moment_fitting.hpp (24 fixed points, orthonormal quadratics,
 /// eq. 17, pseudo-inverse reused); what differs is the right-hand side. Koschier never
@@ -18,7 +18,7 @@
 ///     flux of a divergence-free vector basis p^D_1..p^D_{M_D} of degree `degree` + 1
 ///     (M_D = 50 for degree 2), whose moments follow from (1) alone (eq. 21, corrected below).
 ///
-/// Corrections to the printed equations (notes sections 4.5.2 and 4.9):
+/// Corrections to the printed equations:
 /// - eq. 18: P^A_j = (1/3) (int P_j dxi_1, int P_j dxi_2, int P_j dxi_3); as printed, without the
 ///   1/3, div P^A_j = 3 P_j;
 /// - eq. 21: the first integral is over the piece (a volume integral) and vanishes because
@@ -66,7 +66,7 @@ struct KoschierFitReport {
   int interface_points = 0;        ///< 6 per sub-triangle
   int interface_rank = 0;          ///< numerical rank of eq. 20's matrix at the cut-off
   double interface_condition = 0;  ///< sigma_max / smallest kept sigma of eq. 20's matrix
-  static constexpr double cutoff = 1e-12; ///< relative SVD cut-off for eq. 20 (notes: not in the paper)
+  static constexpr double cutoff = 1e-12; ///< relative SVD cut-off for eq. 20 (not in the paper)
 };
 
 /// Koschier's rule for `piece` (degree 1 or 2: the volume fit of moment_fitting.hpp, face and

@@ -12,8 +12,8 @@
 /// costs its M moments and one (N x M) product. We take N > M points (an underdetermined
 /// system) and the minimum-norm weights w = A^+ b (Koschier section 5, step 4).
 ///
-/// The moments b come from polyhedron_moments.hpp, exactly (notes section 4.5.2, "exact moments:
-/// proposed production path"), so the rule integrates every polynomial of degree <= `degree`
+/// The moments b come from polyhedron_moments.hpp, exactly (as Mirtich 1996 does for rigid
+/// bodies), so the rule integrates every polynomial of degree <= `degree`
 /// over the piece to round-off, on planar, kinked and folded cuts alike. Points lie where the
 /// reference tet has them, mostly outside a small piece: see piece_quadrature_rule.hpp for what
 /// the integrand must be there (the piece's smooth extension, Koschier eq. 16).
@@ -35,12 +35,12 @@ struct MomentFittingSystem {
   Eigen::MatrixXd pseudo_inverse;                ///< A^+, N x M (singular values below cutoff x the largest dropped)
   int rank = 0;                                  ///< A's numerical rank: M when the points are unisolvent
   double condition = 0.0;                        ///< sigma_max / sigma_min of A (the kept ones)
-  static constexpr double cutoff = 1e-12;        ///< relative SVD cut-off (notes 4.5.2: not in the paper)
+  static constexpr double cutoff = 1e-12;        ///< relative SVD cut-off (not in the paper)
 };
 
 /// The reference points of the fit of `degree` (1 <= degree <= 6):
 /// - degree <= 2: the 24 points of Keast's symmetric degree-6 rule (Koschier's 24 volume points,
-///   notes 4.5.2: "24 is the size of the symmetric degree-6 tetrahedral rule"), for M = 4 or 10;
+///   the paper names only Zhang et al. 2009; 24 is the size of that symmetric rule), for M = 4 or 10;
 /// - degree >= 3: Stroud's conical product with n = degree + 1 points in each collapsed direction
 ///   ((degree + 1)^3 points: 64 for M = 20, 125 for degree 4 with M = 35). n = degree would not do:
 ///   a product of n Gauss-Jacobi points in u = xi_1 has (u - u_1)...(u - u_n), a polynomial of

@@ -9,8 +9,8 @@
 /// Points may lie outside the piece, even outside the tet: moment fitting puts its points where
 /// the reference tet has them whatever the cut. The integrand at such a point is then the
 /// piece's SMOOTH EXTENSION h_i, not the true (discontinuous) integrand: evaluate every psi with
-/// the value it has on this piece, whichever side of the cut x_q lies on (the notes' resolution
-/// of eq. 16, section 4.5.2). Evaluating the true h there is wrong.
+/// the value it has on this piece, whichever side of the cut x_q lies on (eq. 16
+/// leaves this open; this is its only consistent reading). Evaluating the true h there is wrong.
 #pragma once
 
 #include "kerf/cut/tet_pieces.hpp"
@@ -34,8 +34,8 @@ struct PieceQuadratureRule {
 using PieceRuleFunction = std::function<PieceQuadratureRule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces,
                                                              int piece, int degree)>;
 
-/// The ways of building a piece's rule that chapter 4 compares (Koschier Table 1 and the notes,
-/// sections 4.4-4.5).
+/// The ways of building a piece's rule that chapter 4 compares (Koschier et al. 2017, Table 1,
+/// and the sub-tetrahedra of Schoch et al. 2013 and Paulus et al.).
 enum class QuadratureRuleKind {
   exact,          ///< moment fitting on fixed points with exact moments (moment_fitting.hpp): exact to `degree`
   subtets,        ///< Gauss on every tet of the piece's convex cells (Schoch, Paulus): exact to `degree`

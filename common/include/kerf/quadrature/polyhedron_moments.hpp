@@ -3,10 +3,9 @@
 ///
 /// The right-hand side of moment fitting (Koschier eq. 17) is the integral of each basis
 /// polynomial over the piece. Koschier obtains it from fitted face and interface rules
-/// (koschier_moment_fitting.hpp); here we compute it exactly, which the notes (section 4.5.2,
-/// "exact moments") propose as the production path and which Mirtich (1996) does for rigid
-/// bodies. With eq. 18 corrected (the antiderivative in one component, so that its divergence
-/// is the monomial itself and not d times it):
+/// (koschier_moment_fitting.hpp); here we compute it exactly, as Mirtich (1996) does for rigid
+/// bodies and as Paulus et al. (section 6) propose. With eq. 18 corrected (the antiderivative in
+/// one component, so that its divergence is the monomial itself and not d times it):
 ///
 ///   int_V x^a y^b z^c dV = int_dV (x^(a+1) / (a + 1)) y^b z^c n_x dS,
 ///

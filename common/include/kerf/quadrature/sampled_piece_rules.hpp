@@ -17,9 +17,10 @@ namespace kerf {
 /// pieces of a tet together use every sample once.
 int piece_of_point(const TetPieces& pieces, const Eigen::Vector3d& x);
 
-/// Paulus's oversampling (notes section 4.5.3): the reference tet cut into n^3 congruent
-/// sub-tets (the Kuhn/Freudenthal split of a lattice of n segments per edge), one point at
-/// each sub-tet's centroid with the weight V / n^3; the points in the piece are kept.
+/// Paulus's oversampling (Paulus et al., section 3.6; the counts are those of their public code):
+/// the reference tet cut into n^3 congruent sub-tets (the Kuhn/Freudenthal split of a lattice of n
+/// segments per edge), one point at each sub-tet's centroid with the weight V / n^3; the points in
+/// the piece are kept.
 PieceQuadratureRule lattice_rule(const Eigen::Matrix<double, 4, 3>& X, const TetPieces& pieces, int piece, int n);
 
 /// Kaufmann's regular sampling (Koschier Table 1's comparator): the centres of n^3 equal cells

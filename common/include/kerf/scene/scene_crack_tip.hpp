@@ -3,7 +3,7 @@
 ///
 /// Chapter 5's program, and every later one that ends a cut inside the tissue, turns the scene
 /// into a model in the same three steps: find the fronts of the cuts (crack_front.hpp), classify
-/// the nodes (branch_enrichment.hpp, Paulus section 3.3, notes 5.1), and hand the model the sign
+/// the nodes (branch_enrichment.hpp, Paulus section 3.3), and hand the model the sign
 /// enrichment and the branch functions. The scene decides the rule:
 /// - no "crack_tip", or `"enrichment": "branch"` without "radius": geometric enrichment with
 ///   default_tip_enrichment_radius (tip_enrichment_radius.hpp), the rule that restores the

@@ -1,5 +1,5 @@
 /// @file blade_pull_back.hpp
-/// @brief The blade's edge, which lives in the world, carried into the reference configuration where the cut is stored (notes 7.2, "material vs world space").
+/// @brief The blade's edge, which lives in the world, carried into the reference configuration where the cut is stored (Koschier et al. 2017, Fig. 2).
 ///
 /// A blade cuts the deformed body, but chapter 4 clips the reference mesh. So each frame we pull
 /// the edge back: points spread along it are pulled back one by one (pull_back.hpp). Most of a

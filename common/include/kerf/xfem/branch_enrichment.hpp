@@ -1,5 +1,5 @@
 /// @file branch_enrichment.hpp
-/// @brief Which nodes get the crack-tip (branch) functions and which the sign (Heaviside) enrichment, by Paulus's topological rule or by a radius (Paulus section 3.3, notes 5.1).
+/// @brief Which nodes get the crack-tip (branch) functions and which the sign (Heaviside) enrichment, by Paulus's topological rule or by a radius (Paulus section 3.3; Laborde et al. 2005).
 ///
 /// Chapter 4 enriches a node once per extra part its support is cut into (surface_enrichment.hpp):
 /// a node whose support holds the front is not split and gets nothing, so the cut ends at the
@@ -16,7 +16,7 @@
 ///   holds a piece of the front of positive length (front_in_tet), which is the partially cut
 ///   tets and, when the front runs exactly along a face or an edge, the tets on both sides of it
 ///   (where no tet is partially cut and Paulus's rule would enrich nothing);
-/// - **geometric** (Laborde et al. 2005, Bechet et al. 2005; notes 5.1): every node within the
+/// - **geometric** (Laborde et al. 2005, Bechet et al. 2005): every node within the
 ///   radius r_e of the front, and the topological ones as well, so that the two sets are nested
 ///   even when r_e is smaller than the elements (a tet the front crosses always has branch nodes).
 /// The sign nodes are chapter 4's enriched nodes that are not branch enriched (a node is never
@@ -24,13 +24,13 @@
 /// completely cut tet whose support holds no piece of the front has its support split, so chapter
 /// 4 enriches it; one whose support holds a piece of the front is branch enriched by both rules.
 ///
-/// Blending tets (notes 5.6): tets with some, not all, nodes branch enriched. The tets with a
+/// Blending tets (Paulus et al., section 5.2): tets with some, not all, nodes branch enriched. The tets with a
 /// branch node are where the model integrates the branch functions (uncut blending tets
 /// included: Paulus's "uncut blending element").
 ///
 /// In a blending tet the branch nodes' hats no longer sum to one, so the enrichment there is not
 /// F itself but a part of it, which the standard shape functions cannot make up: the
-/// blending error (Chessa et al. 2003). Fries's corrected XFEM (2008; notes 5.6) cures it by
+/// blending error (Chessa et al. 2003). Fries's corrected XFEM (2008) cures it by
 /// multiplying the functions by the ramp
 ///
 ///   R(x) = sum_{i in I*} lambda_i(x)        (I*: the branch nodes chosen above)
@@ -108,7 +108,7 @@ struct BranchEnrichment {
   int count(NodeEnrichmentKind k) const;
 };
 
-/// Classifies every node of `mesh` (notes 5.1).
+/// Classifies every node of `mesh` (Paulus et al., section 3.3).
 /// @param mesh     Tet4 or Tet10 mesh
 /// @param pieces   cut_mesh_into_pieces(mesh, cuts)
 /// @param fronts   find_crack_fronts(mesh, cuts)

@@ -1,5 +1,5 @@
 /// @file branch_functions.hpp
-/// @brief The four asymptotic crack-tip (branch) functions, their closed-form gradients, and their shifted form N_i (F_l - F_l(x_i)) (Paulus section 3.4, notes 5.3).
+/// @brief The four asymptotic crack-tip (branch) functions, their closed-form gradients, and their shifted form N_i (F_l - F_l(x_i)) (Paulus section 3.4).
 ///
 /// Near the front of a crack the displacement of linear elasticity behaves like sqrt(r) times
 /// functions of theta (Williams 1957). The four functions
@@ -7,11 +7,11 @@
 ///   F(r, theta) = sqrt(r) ( sin(theta/2), cos(theta/2), sin(theta/2) sin(theta), cos(theta/2) sin(theta) )
 ///
 /// (Fleming et al. 1997, Belytschko and Black 1999; Paulus section 3.4) span the first term of
-/// that expansion for every mode: notes 5.7 write mode I as u_a = K_I / (2 mu sqrt(2 pi))
+/// that expansion for every mode: mode I is u_a = K_I / (2 mu sqrt(2 pi))
 /// ((kappa - 1) F_2 + F_3) and u_b = K_I / (2 mu sqrt(2 pi)) ((kappa + 1) F_1 - F_4). Only F_1 is
 /// discontinuous across the cut (theta = +-pi), with the jump 2 sqrt(r); the others are continuous.
 ///
-/// Kerf uses them shifted (notes 5.3, "shifted vs unshifted"): node i's four enrichment
+/// Kerf uses them shifted (Paulus does not; Belytschko et al. 2001, Ventura et al. 2009): node i's four enrichment
 /// functions are N_i(x) (F_l(x) - F_l(x_i)), which vanish at every node, so the nodal unknown u_i
 /// is the displacement there (chapter 3's Kronecker property) and Dirichlet values are imposed by
 /// fixing u_i alone. F_l(x_i) is taken with the node's side when the node lies on the cut
@@ -33,13 +33,13 @@ struct BranchValues {
 /// The four functions of r and theta.
 Eigen::Vector4d branch_function_values(double r, double theta);
 
-/// The derivatives of the four functions along the frame's a and b (notes 5.3, derived in closed
-/// form; d/dx_c = 0), column 0 d/dx_a, column 1 d/dx_b. They grow like 1 / sqrt(r).
+/// The derivatives of the four functions along the frame's a and b (derived in closed form,
+/// not in the paper; d/dx_c = 0), column 0 d/dx_a, column 1 d/dx_b. They grow like 1 / sqrt(r).
 /// @param r > 0 (at r = 0 they are unbounded; the caller guards)
 Eigen::Matrix<double, 4, 2> branch_function_frame_derivatives(double r, double theta);
 
 /// F and grad F at a point given its polar coordinates: grad F_l = dF_l/dx_a grad x_a +
-/// dF_l/dx_b grad x_b (notes 5.3 write a and b for grad x_a and grad x_b, the frame treated as
+/// dF_l/dx_b grad x_b (with a and b for grad x_a and grad x_b, the frame treated as
 /// constant, as Paulus does: exact for a straight front). On a polyline front the frame turns
 /// along it, and CrackFronts::polar gives grad x_a and grad x_b with that turning: treating the
 /// frame as constant there was 2.4 % off on a 64-chord arc (test_branch_functions.cpp), the

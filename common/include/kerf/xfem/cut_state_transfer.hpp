@@ -1,9 +1,9 @@
 /// @file cut_state_transfer.hpp
-/// @brief When a cut grows during a run, the state of the old model in the DOFs of the new one, with the field unchanged (notes 7.2, "DOF state at the moment of cutting").
+/// @brief When a cut grows during a run, the state of the old model in the DOFs of the new one, with the field unchanged (no paper says how).
 ///
 /// Chapter 7's blade cuts while the body moves: each time a tet becomes crossed the model is
 /// rebuilt on the longer cut, with more enrichments. Its displacement, velocity and acceleration
-/// vectors must be carried over. No paper says how (notes 7.6, question 6); the standard answer
+/// vectors must be carried over. No paper says how; the standard answer
 /// is that new enrichments start at rest and at zero, so that the field does not jump and no
 /// energy is injected. With enrichments counted per part of a support (Koschier section 4.3,
 /// surface_enrichment.hpp) that answer is exact, and it generalises into one rule:
@@ -19,7 +19,7 @@
 ///   a_k = w_i - u_i   (old phantom value minus the standard value),
 ///
 /// which is 0 for a part that was the home part before (a tet the blade has just split: the new
-/// enrichment starts at zero, as the notes say) and the old a for a part that already was a far
+/// enrichment starts at zero, the standard answer) and the old a for a part that already was a far
 /// part. The standard DOF u_i is itself a phantom value, the one on the node's home part; the
 /// home part of a node that lies on a cut can switch when a second cut passes through the node
 /// (the parts are numbered anew), so u_i takes the old field's value on the new home part too:

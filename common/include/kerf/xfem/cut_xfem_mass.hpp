@@ -1,5 +1,5 @@
 /// @file cut_xfem_mass.hpp
-/// @brief The consistent XFEM mass of a body cut by triangle meshes, integrated on the pieces (Paper 000 eqs. 76-80, degree 4 for Tet10).
+/// @brief The consistent XFEM mass of a body cut by triangle meshes, integrated on the pieces (Schoch et al. eqs. 76-80, degree 4 for Tet10).
 #pragma once
 
 #include "kerf/xfem/cut_xfem_model.hpp"
@@ -12,7 +12,7 @@ namespace kerf {
 
 /// Throws std::invalid_argument naming `who` if `model` has crack-tip functions. Since the masses
 /// have rows for the branch DOFs (below), only eqs. 81-82 of dynamics/lumped_mass.hpp call it:
-/// Paper 000 gives them no branch rows.
+/// Schoch et al. give them no branch rows.
 void require_no_crack_tip_functions(const CutXfemModel& model, const char* who);
 
 /// The scalar consistent mass of tet t on its slots (row t of model.assembly_slots()), S x S:
@@ -39,7 +39,7 @@ Eigen::MatrixXd cut_xfem_slot_mass(const CutXfemModel& model, Eigen::Index t, do
 ///
 /// the phantom elements' masses over their pieces (eqs. 77-80 with Psi in {0, 1} on each piece);
 /// a tet with branch functions adds their rows and columns, cut_xfem_slot_mass() scattered.
-/// N_a N_b has degree 2 on a Tet4 piece and 4 on a Tet10 piece (notes 4.4): `rule` is asked for
+/// N_a N_b has degree 2 on a Tet4 piece and 4 on a Tet10 piece: `rule` is asked for
 /// that degree on every piece of a split tet, and must be exact for it (the "exact" and
 /// "subtets" rules are; volume ratios are not, even for a Tet4; Koschier's "moment_fitting" is
 /// built for degrees 1 and 2 only and refuses 4). Tets integrated whole use chapter 1's

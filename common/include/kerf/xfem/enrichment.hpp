@@ -1,5 +1,5 @@
 /// @file enrichment.hpp
-/// @brief Which nodes the shifted Heaviside enrichment (Paper 000 eq. 44) reaches, the side of every node and
+/// @brief Which nodes the shifted Heaviside enrichment (Schoch et al. eq. 44) reaches, the side of every node and
 ///        tet, and the volume fractions V_a / V, V_b / V of every tet: everything chapter 3 decides once per cut.
 #pragma once
 
@@ -53,14 +53,14 @@ enum class TetSide : signed char {
 /// 3. the tets around i hold volume on both sides of the cut. Otherwise Phi_i Psi_i would be
 ///    0 or -Phi_i everywhere: no new function, and a singular system.
 ///
-/// This rule is Kerf's own, and differs from both papers'. Paper 000 (eq. 73 and section 4.3)
+/// This rule is Kerf's own, and differs from both papers'. Schoch et al. (eq. 73 and section 4.3)
 /// enriches every node of every cut element, partially cut ones included, and lets a partial
-/// cut "continue through" the element. Paper 003 (section 3.3) gives the nodes of partially cut
+/// cut "continue through" the element. Paulus et al. (section 3.3) give the nodes of partially cut
 /// elements branch (crack-tip) functions and sign-enriches only the nodes of completely cut
 /// elements that touch no partially cut one. Kerf sign-enriches the nodes of partially cut tets
-/// too (split by the whole plane, as Paper 000 does), but leaves unenriched every node that
+/// too (split by the whole plane, as Schoch et al. do), but leaves unenriched every node that
 /// touches a tet the plane crosses outside the rectangle, which is a different set, one element
-/// further out than Paper 003's branch nodes. Chapter 5 gives these `front` nodes branch
+/// further out than Paulus et al.'s branch nodes. Chapter 5 gives these `front` nodes branch
 /// functions.
 ///
 /// What that makes of the front. The simulated cut ends at the last row of enriched nodes:

@@ -1,5 +1,5 @@
 /// @file enrichment_volumes.hpp
-/// @brief How much material each enrichment acts on, V_enr against its node's support V_supp (notes 4.7), and Koschier's eq. 22 test for the slivers to constrain.
+/// @brief How much material each enrichment acts on, V_enr against its node's support V_supp (Koschier et al. 2017, eqs. 22 and 27), and Koschier's eq. 22 test for the slivers to constrain.
 #pragma once
 
 #include "kerf/cut/mesh_pieces.hpp"

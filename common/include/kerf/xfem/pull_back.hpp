@@ -1,5 +1,5 @@
 /// @file pull_back.hpp
-/// @brief The reference position of the material point that the deformation has carried to a given world position: how chapter 7 stores a blade's cut in the reference configuration (Koschier Fig. 2; notes 7.2, "material vs world space").
+/// @brief The reference position of the material point that the deformation has carried to a given world position: how chapter 7 stores a blade's cut in the reference configuration (Koschier et al. 2017, Fig. 2).
 ///
 /// The blade lives in the world; the cut must live in the reference configuration, where the
 /// model's pieces, quadrature and enrichment are defined. A world point x is the image

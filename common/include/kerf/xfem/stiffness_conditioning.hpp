@@ -1,5 +1,5 @@
 /// @file stiffness_conditioning.hpp
-/// @brief The 2-norm condition number of the static XFEM stiffness K_ff with crack-tip (branch) DOFs, bare and with the cures: Jacobi scaling, Koschier's bilateral diagonal (Paper 002 eqs. 23-27), the part basis and Bechet's node blocks (issue 10 item 6, notes 5.8, 6.4).
+/// @brief The 2-norm condition number of the static XFEM stiffness K_ff with crack-tip (branch) DOFs, bare and with the cures: Jacobi scaling, Koschier's bilateral diagonal (Koschier et al. eqs. 23-27), the part basis and Bechet's node blocks.
 ///
 /// Chapter 6 measures the Newton matrix M + dt^2 K of a free body (newton_matrix_conditioning.hpp);
 /// chapter 5's question is the static stiffness of a held body once the branch DOFs are in: how

@@ -39,7 +39,7 @@ namespace kerf {
 ///
 /// The home part of a node on a cut (a cut through the node, which exact predicates decide):
 /// the node touches two or more parts. Kerf takes the part above the cut (the side its
-/// triangles' normals point to), as Paper 000 counts nodes "above the crack and on the crack
+/// triangles' normals point to), as Schoch et al. count nodes "above the crack and on the crack
 /// line" as above (eqs. 58-59); failing that (a fold through the node), the lowest-numbered.
 /// The choice changes the meaning of a_i, never the space of fields.
 struct SurfaceEnrichment {

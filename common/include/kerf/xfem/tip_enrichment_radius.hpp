@@ -1,5 +1,5 @@
 /// @file tip_enrichment_radius.hpp
-/// @brief The default radius of geometric crack-tip enrichment (issue 10, item 2): the one number a
+/// @brief The default radius of geometric crack-tip enrichment: the one number a
 ///        scene's "crack_tip" may leave out.
 ///
 /// Geometric enrichment (Laborde et al. 2005, Bechet et al. 2005) gives the branch functions to

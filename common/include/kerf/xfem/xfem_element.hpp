@@ -34,10 +34,10 @@ Eigen::Matrix<double, 12, 24> side_operator(const Eigen::Vector4d& psi);
 ///   K^X = (V_a / V) T_a^T K T_a + (V_b / V) T_b^T K T_b.
 ///
 /// Written out block by block this is eqs. 54-57; with the shifted values of Psi it is eqs.
-/// 60-63. No new quadrature point is needed, only the two volumes: Paper 000's "very special
+/// 60-63. No new quadrature point is needed, only the two volumes: Schoch et al.'s "very special
 /// feature".
 ///
-/// Where the code departs from Paper 000's printed text (a student reading along should know):
+/// Where the code departs from Schoch et al.'s printed text (a student reading along should know):
 /// - eq. 61: its second case reads "if H_j = -1" where H_i = -1 is meant;
 /// - eq. 71 (the corotated a-rows): its case labels are swapped relative to eqs. 58-59. It reads
 ///   "if H_i = -1, i.e. if Psi_ai = 0 and Psi_bi = -1", but Psi_ai = 0, Psi_bi = -1 belong to

@@ -1,5 +1,5 @@
 /// @file xfem_field.hpp
-/// @brief The enriched displacement field u(x) = sum Phi_i u_i + sum Phi_i Psi_i a_i (Paper 000 eq. 42) at points,
+/// @brief The enriched displacement field u(x) = sum Phi_i u_i + sum Phi_i Psi_i a_i (Schoch et al. eq. 42) at points,
 ///        for probes and errors, and the cut body written piece by piece so that ParaView shows the gap (Figs. 7-8).
 #pragma once
 
@@ -33,7 +33,7 @@ Eigen::MatrixXd xfem_displacement_at(const XfemModel& model, const Eigen::Vector
 void sample_xfem_probes(const std::filesystem::path& probes_in, const std::filesystem::path& probes_out, const XfemModel& model,
                         const Eigen::VectorXd& u, std::ostream* warnings);
 
-/// Writes the cut body as ParaView should see it (Paper 000 section 5.2, "Postprocessing", and
+/// Writes the cut body as ParaView should see it (Schoch et al. section 5.2, "Postprocessing", and
 /// Figs. 7-8): tets without enriched corners as they are, sharing their nodes; every tet with
 /// an enriched corner as its pieces, the sub-tets above and below the cut, each with its own
 /// points displaced by its side's field. The gap then opens where the enriched DOFs say it

@@ -1,5 +1,5 @@
 /// @file xfem_mass.hpp
-/// @brief The XFEM mass: consistent (Paper 000 eqs. 76-80), integrated piece by piece, and lumped (eqs. 81-82).
+/// @brief The XFEM mass: consistent (Schoch et al. eqs. 76-80), integrated piece by piece, and lumped (eqs. 81-82).
 #pragma once
 
 #include "kerf/xfem/xfem_model.hpp"

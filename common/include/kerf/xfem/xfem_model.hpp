@@ -1,5 +1,5 @@
 /// @file xfem_model.hpp
-/// @brief The cut body: the [u; a] unknowns (Paper 000 eq. 74), its linear stiffness by volume ratios (eqs. 60-63)
+/// @brief The cut body: the [u; a] unknowns (Schoch et al. eq. 74), its linear stiffness by volume ratios (eqs. 60-63)
 ///        and its corotated forces and tangent with one rotation per piece (eqs. 64-71).
 #pragma once
 
@@ -93,7 +93,7 @@ private:
 /// every enriched node among them also a_i = 0.
 ///
 /// Why a_i too. With the shifted enrichment the field at node i is u_i on both sides, so
-/// fixing u_i holds the node (Paper 000 section 4.2: a node "can be fixed to a specific value by
+/// fixing u_i holds the node (Schoch et al. section 4.2: a node "can be fixed to a specific value by
 /// constraining a single DOF"). It does not hold the field between nodes: on a Dirichlet face
 /// inside a cut tet, the side that node j is not on sees sum_j Phi_j (u_j + Psi_j a_j), and
 /// with u_j prescribed and a_j free the two flaps can slide along the clamp. With a_j = 0 on
