@@ -1,5 +1,5 @@
 /* Kerf benchmark: chapter 5's branch enrichment against chapter 4's Heaviside-only enrichment on
-   the same cut, on one core (issue 10, item 8).
+   the same cut, on one core.
 
    Build and run:   cmake --build --preset release --target bench_crack_tip_run
                     (runs bench_crack_tip with OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1)

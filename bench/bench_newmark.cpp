@@ -6,7 +6,7 @@
                     bench_newmark --quick      (the smallest block, a few steps: does it run?)
                     bench_newmark --only 12    (the 10k-tet block alone)
 
-   The block of issue 11, item 8: a 0.1 m cube of soft tissue (E = 5 kPa, nu = 0.45,
+   The block of the speed study: a 0.1 m cube of soft tissue (E = 5 kPa, nu = 0.45,
    rho = 1000 kg/m^3), corotational, per-piece lumped mass, Rayleigh damping C = 1 M + 0.005 K_R,
    gravity along -z switched on at t = 0, clamped on its face x = 0, and cut by a horizontal slit
    at z = 0.051 through its free half (x > 0.05), so that it sags as two flaps. Newmark's average

@@ -6,7 +6,7 @@
                     bench_xfem --quick      (a small mesh, a few seconds: does it run?)
 
    On the beam of chapter 3 (0.03 x 0.06 x 0.2 m, clamped at z = 0, top edge x = 0 pulled up
-   0.02 m) with Paper 000's half-depth cut [0, 0.015] x [0, 0.06] x {0.1}, it measures
+   0.02 m) with Schoch et al.'s half-depth cut [0, 0.015] x [0, 0.06] x {0.1}, it measures
      (a) the cut processing, make_enrichment (level set, minimum-fraction rule, classification,
          clipping of every tet the plane crosses, the enrichment rules), per tet crossed;
      (b) one assembly of the linear stiffness into the fixed CSR pattern: XfemModel's K^X

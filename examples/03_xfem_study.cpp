@@ -10,13 +10,13 @@
 
    Description: the beam of chapters 1 and 2 (0.03 x 0.06 x 0.2 m, E = 300 kPa, nu = 0.35,
    rho = 1070 kg/m^3), clamped at z = 0, cut half-way through its depth by a rectangle
-   [0, x1] x [0, 0.06] x {z}, under Paper 000's three loads (section 6):
+   [0, x1] x [0, 0.06] x {z}, under Schoch et al.'s three loads (section 6):
      gravity  9.81 m/s^2 along +x;
      pull     the top edge x = 0 (z = 0.2, all y) moved up by 0.02 m;
      move     the top edge x = 0.03 moved by (+0.03, 0, -0.015) m.
    Each is solved with linear and with corotated FEM. The program writes, into the --out folder:
      ladder.csv     one row per (case, model, method, mesh), the cut at x1 = 0.0153, z = 0.1003
-                    (Paper 000's moved by 0.3 mm, off every node layer and cell middle): DOFs,
+                    (Schoch et al.'s moved by 0.3 mm, off every node layer and cell middle): DOFs,
                     wall time, relative L2 error against the reference, and the enrichment's
                     counts (partially cut tets among them). Methods: "xfem" (uniform Tet4 box
                     meshes that ignore the cut), "conforming" (Tet4 box meshes whose node layers
@@ -97,14 +97,14 @@ struct CutPlace {
   double z = cut_height;
 };
 
-/// The ladders' cut: Paper 000's, moved by 0.3 mm in x and z so that neither the front nor the
+/// The ladders' cut: Schoch et al.'s, moved by 0.3 mm in x and z so that neither the front nor the
 /// plane lies on a node layer or a cell middle of any ladder mesh, and the tets at the front are
-/// partially cut (ladder.csv counts them). On Paper 000's own place, x = 0.015 and z = 0.1, the
+/// partially cut (ladder.csv counts them). On Schoch et al.'s own place, x = 0.015 and z = 0.1, the
 /// odd cell counts of the XFEM ladder put both through cell middles, where every section at the
 /// front ends exactly on it: a coincidence, not the method (results.md, "Where the cut ends").
 const CutPlace ladder_place{0.0153, 0.1003};
 
-/// The half-depth cut [0, x1] x [0, 0.06] x {z}, normal +z (Paper 000's with x1 = 0.015, z = 0.1).
+/// The half-depth cut [0, x1] x [0, 0.06] x {z}, normal +z (Schoch et al.'s with x1 = 0.015, z = 0.1).
 kerf::RectangleCut make_cut(double z, double x1 = front_x) {
   return kerf::RectangleCut(Eigen::Vector3d(0.0, 0.0, z), Eigen::Vector3d(x1, 0.0, 0.0), Eigen::Vector3d(0.0, 0.06, 0.0));
 }
@@ -171,7 +171,7 @@ struct Solution {
 /// x1 and one on the plane z: the layer nearest to each (never a face of the beam) goes there
 /// exactly, and the layers between it and the faces are spaced evenly again (a piecewise linear
 /// map of each coordinate, which keeps every tet's orientation). For even cell counts and
-/// Paper 000's place (0.015, 0.1) nothing moves.
+/// Schoch et al.'s place (0.015, 0.1) nothing moves.
 kerf::TetMesh fitted_box_mesh(const Eigen::Vector3i& cells, const CutPlace& place) {
   kerf::TetMesh mesh = kerf::make_box_mesh(beam_min, beam_max, cells);
   const auto fit = [&](int axis, double target) {
@@ -344,7 +344,7 @@ Sizes study_sizes(bool quick) {
     s.max_corotated_cells = 4100;
     s.fraction_meshes = {{4, 4, 10}, {3, 4, 10}};
     for (int k = 1; k <= 15; ++k) s.fraction_offsets.push_back(std::pow(10.0, -0.5 * k));
-    // 0.3 mm and 0.9 mm either side of Paper 000's place in x, mixed in z: on the three-cell
+    // 0.3 mm and 0.9 mm either side of Schoch et al.'s place in x, mixed in z: on the three-cell
     // meshes 0.0147 and 0.0141 fall in the other half of the cell than 0.0153 and 0.0159.
     s.spread_places = {{0.0147, 0.0997}, {0.0159, 0.1011}, {0.0141, 0.1006}};
     for (int k = 0; k <= 56; ++k) s.sweep_x1.push_back(0.001 + 0.0005 * k);

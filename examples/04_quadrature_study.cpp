@@ -12,7 +12,7 @@
    split_tet_by_triangles, and the piece holding the corner (0,0,0) (Koschier's "volume portion
    indicated in blue") is integrated:
      planar     the plane x + y + z = 0.3 as one large triangle: the corner piece x + y + z <= 0.3
-                (the notes' reconstruction of Koschier's diagonal cut, section 4.6);
+                (our reconstruction of Koschier's diagonal cut from his sampling column);
      kinked     our own kink, Koschier's being unknown: the plane x + y + z = 0.6 where z <= 0.3 and
                 the plane z = 0.3 where x + y <= 0.3, meeting along the line x + y = 0.3, z = 0.3
                 through the tet. The piece is {x + y + z <= 0.6, z <= 0.3}: the corner simplex of
@@ -281,7 +281,7 @@ std::vector<Result> run_cut(const Cut& cut, const Sizes& sizes) {
 
 // @sect3{Koschier's printed numbers, and the files}
 
-/// Koschier Table 1 (notes section 4.6): his moment fitting (24 QP) and regular sampling (50^3)
+/// Koschier et al. 2017, Table 1: his moment fitting (24 QP) and regular sampling (50^3)
 /// relative errors and the latter's point counts, per cut and polynomial.
 struct Printed {
   std::array<double, 4> koschier, regular;

@@ -1,5 +1,5 @@
 /* Kerf, chapter 5 study: where crack-tip enrichment fails, the condition number of the static
-   stiffness with the branch DOFs (issue 10, item 6; notes 5.8 and 6.4).
+   stiffness with the branch DOFs.
 
    Build:   cmake --preset release && cmake --build --preset release --target 05_failure_study
 

@@ -14,7 +14,7 @@
      crossed   the front enters through one face and leaves through another, off every edge;
      grazing   the front passes 1e-3 of the tet's size from one of its edges (a front near an edge,
                the hard case for sub-tets: their Gauss points sit close to the singular line).
-   The integrands are those of the branch-enriched stiffness and loads (notes 5.5): 1/sqrt(r),
+   The integrands are those of the branch-enriched stiffness and loads (Paulus et al., section 3.5): 1/sqrt(r),
    1/r, sqrt(r) sin(theta/2) (F_1, discontinuous across the cut), cos(theta/2)/sqrt(r) (a
    gradient) and sin(3 theta/2)^2 / r (a product of gradients). The reference is the integral in
    cylindrical coordinates about the front (quadrature/cylindrical_tet_integral.hpp, 32 points per

@@ -8,7 +8,7 @@
      05_paulus_study --out figures/05_crack_tip                   (all three parts)
      05_paulus_study --only sweep --out figures/05_crack_tip      (one part: fig9, sweep, partial)
 
-   Description: Paulus's beam (notes 5.7): [0, 0.03] x [0, 0.06] x [0, 0.2] m, E = 300 kPa,
+   Description: Paulus's beam (Paulus et al., section 5.1): [0, 0.03] x [0, 0.06] x [0, 0.2] m, E = 300 kPa,
    nu = 0.35, rho = 1070 kg/m^3, clamped at z = 0, linear. The program writes, into --out:
      paulus.csv   Fig. 9 again: the half-depth cut [0, 0.015] x [0, 0.06] x {0.1}, whose front
                   x = 0.015 runs through the middle of the XFEM meshes' elements, under two
@@ -178,7 +178,7 @@ Eigen::MatrixXd xfem_values(const kerf::CrackTipBody& body, const Eigen::VectorX
 
 // @sect3{The meshes}
 
-/// The cut as a triangle surface for XFEM: the authors' CutHorizontal (notes 5.7), the
+/// The cut as a triangle surface for XFEM: the authors' CutHorizontal (from their public code), the
 /// rectangle [-0.01, x1] x [-0.01, 0.07] at height z, overhanging the beam on three sides so
 /// that its only edge inside the beam is the front x = x1. Normal +z: "above" is +z.
 kerf::TriangleSurface half_depth_cut(double x1, double z) {

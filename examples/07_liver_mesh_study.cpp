@@ -1,5 +1,5 @@
 /* Kerf, chapter 7 study: the liver of our own, meshed by CGAL's Mesh_3 from its implicit surface
-   (issue: chapter 7, item 1). How many tets we get for the number asked, how long it takes, how
+   How many tets we get for the number asked, how long it takes, how
    good the tets are and how close the volume is; and what Mesh_3's optimisers buy at what cost.
 
    Build:   cmake --preset release && cmake --build --preset release --target 07_liver_mesh_study

@@ -1,4 +1,4 @@
-/* Kerf, chapter 7 study: the visual surface (issue: chapter 7, item 4). A smooth surface of the
+/* Kerf, chapter 7 study: the visual surface. A smooth surface of the
    liver several times finer than its tet mesh's boundary, embedded in the tets, so that the
    picture shows the organ and not the tets' facets (Gutierrez section 3.2, Koschier section 7).
 

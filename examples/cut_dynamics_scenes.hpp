@@ -41,7 +41,7 @@ inline kerf::PieceQuadratureRule piece_rule(const Eigen::Matrix<double, 4, 3>&, 
 
 /// Element duplication (the virtual node algorithm of Molino, Bao and Fedkiw 2004, as Koschier
 /// section 7 describes it): every piece gets a full copy of its element, so it is integrated
-/// with the whole tet's Gauss rule, weights not scaled by V_piece / V (notes 6.5). Each piece
+/// with the whole tet's Gauss rule, weights not scaled by V_piece / V. Each piece
 /// then carries the mass, the weight and the stiffness of the whole element.
 inline kerf::PieceQuadratureRule duplication_rule(const Eigen::Matrix<double, 4, 3>& X, const kerf::TetPieces& pieces, int piece,
                                                   int degree) {
@@ -59,7 +59,7 @@ inline double tet_volume(const kerf::TetMesh& mesh, Eigen::Index t) {
 
 /// A cut body, its consistent mass and gravity (both from the model's rule), clamped nodes, as
 /// M a + f_int(u) = f for Newmark (nonlinear_newmark.hpp): f_int = K u (linear XFEM) or the
-/// corotated force (Paper 000 eq. 40). Lambdas refer to the members: not copyable.
+/// corotated force (Schoch et al. eq. 40). Lambdas refer to the members: not copyable.
 struct CutDynamicBody {
   kerf::TetMesh mesh;
   kerf::CutSurfaces cuts;

@@ -22,7 +22,7 @@
 
 namespace {
 
-// The review's beam (3 x 6 x 19 cells, gravity along +x, clamped at z = 0) with one rectangle
+// The demo beam (3 x 6 x 19 cells, gravity along +x, clamped at z = 0) with one rectangle
 // cut and a solver; `mesh` replaces the box when given.
 std::string beam_scene(const std::string& rectangle, const std::string& solver, const std::string& mesh = "") {
   return R"({"mesh": )" + (mesh.empty() ? R"({"box": {"min": [0,0,0], "max": [0.03,0.06,0.2], "cells": [3,6,19]}, "order": 1})" : mesh) +

@@ -1,4 +1,4 @@
-// Corotational XFEM (Paper 000 eqs. 64-71): two pieces of a bar cut through, each turned
+// Corotational XFEM (Schoch et al. eqs. 64-71): two pieces of a bar cut through, each turned
 // rigidly by its own 60-degree rotation, carry no internal force and no corotated energy
 // (while linear XFEM sees a large energy there), and the consistent tangent of
 // XfemModel::assemble is the derivative of its forces.

@@ -1,5 +1,5 @@
 // One enriched Tet4: the side-operator form of the stiffness (xfem_tet4_stiffness) against
-// Paper 000's eqs. 60-63 typed in block by block for all 16 sign patterns of H, against eqs.
+// Schoch et al.'s eqs. 60-63 typed in block by block for all 16 sign patterns of H, against eqs.
 // 54-57 with the generalized (unshifted) Heaviside values, and the change of basis that makes
 // the two enrichments span the same space.
 #include "kerf/fem/tet_stiffness.hpp"

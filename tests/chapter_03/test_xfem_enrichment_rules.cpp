@@ -1,4 +1,4 @@
-// Which nodes get enriched, under Kerf's rule and under the two papers' (review F10): the three
+// Which nodes get enriched, under Kerf's rule and under the two papers': the three
 // sets differ at the cut's front, and the enrichment header says how. Here they are listed on
 // the demo beam with a front that really runs through tets (x1 = 15.3 mm, plane z = 0.1003),
 // each paper's set computed from its own definition in the test.
@@ -34,13 +34,13 @@ bool includes(const NodeSet& a, const NodeSet& b) { return std::includes(a.begin
 
 } // namespace
 
-TEST_CASE("enrichment rules: Kerf's sign-enriched nodes beside Paper 000's and Paper 003's sets") {
+TEST_CASE("enrichment rules: Kerf's sign-enriched nodes beside Schoch et al.'s and Paulus et al.'s sets") {
   const kerf::TetMesh mesh = xfem_test::beam({3, 6, 19});
   const kerf::Enrichment e = kerf::make_enrichment(mesh, kerf::RectangleCut({0, 0, 0.1003}, {0.0153, 0, 0}, {0, 0.06, 0}));
   using State = kerf::ElementCutState;
-  // Paper 000 (eq. 73, section 4.3): every node of every element the cut reaches.
+  // Schoch et al. (eq. 73, section 4.3): every node of every element the cut reaches.
   const NodeSet paper000 = nodes_of_tets_in_state(mesh, e, {State::partially_cut, State::completely_cut});
-  // Paper 003 (section 3.3): branch functions on the nodes of partially cut elements, signs on
+  // Paulus et al. (section 3.3): branch functions on the nodes of partially cut elements, signs on
   // the other nodes of completely cut ones.
   const NodeSet branch003 = nodes_of_tets_in_state(mesh, e, {State::partially_cut});
   const NodeSet sign003 = minus(nodes_of_tets_in_state(mesh, e, {State::completely_cut}), branch003);
@@ -50,15 +50,16 @@ TEST_CASE("enrichment rules: Kerf's sign-enriched nodes beside Paper 000's and P
     if (e.tet_side[static_cast<std::size_t>(t)] == kerf::TetSide::beyond)
       for (int a = 0; a < 4; ++a) touching_beyond.insert(mesh.tets(t, a));
 
-  MESSAGE("Paper 000: " << paper000.size() << " nodes; Paper 003: " << sign003.size() << " sign + " << branch003.size()
-                        << " branch; Kerf: " << kerf.size() << " sign, " << e.front_nodes << " front nodes left for chapter 5");
+  MESSAGE("Schoch et al.: " << paper000.size() << " nodes; Paulus et al.: " << sign003.size() << " sign + "
+                            << branch003.size() << " branch; Kerf: " << kerf.size() << " sign, " << e.front_nodes
+                            << " front nodes left for chapter 5");
   REQUIRE(e.classification.count(State::partially_cut) > 0); // the front does run through tets
-  // Kerf enriches a subset of Paper 000's nodes: those with no tet beyond the front.
+  // Kerf enriches a subset of Schoch et al.'s nodes: those with no tet beyond the front.
   CHECK(includes(paper000, kerf));
   CHECK(kerf == minus(paper000, touching_beyond));
-  // Every node Paper 003 sign-enriches, Kerf does too ...
+  // Every node Paulus et al. sign-enrich, Kerf does too ...
   CHECK(includes(kerf, sign003));
-  // ... and Kerf also sign-enriches some nodes Paper 003 gives branch functions: the nodes of
+  // ... and Kerf also sign-enriches some nodes Paulus et al. give branch functions: the nodes of
   // partially cut tets on the cut's side of the front.
   const NodeSet branch_but_kerf_sign = minus(branch003, minus(branch003, kerf));
   CHECK_FALSE(branch_but_kerf_sign.empty());

@@ -104,7 +104,7 @@ TEST_CASE("xfem front: a front short of the far face can already free the top") 
 
 TEST_CASE("xfem front: the chapter's ladder meshes have partially cut tets at the ladders' cut") {
   // The ladders' cut of examples/03_xfem_study.cpp: front x1 = 0.0153, plane z = 0.1003. At
-  // Paper 000's own place (0.015, 0.1) the odd cell counts put both through cell middles, where
+  // Schoch et al.'s own place (0.015, 0.1) the odd cell counts put both through cell middles, where
   // every section at the front ends exactly on it and no tet is partially cut.
   const std::vector<Eigen::Vector3i> ladder = {{1, 2, 5}, {3, 2, 7}, {3, 4, 11}, {3, 6, 19}, {5, 10, 31}, {7, 14, 41}, {9, 18, 53}};
   for (const Eigen::Vector3i& cells : ladder) {

@@ -1,4 +1,4 @@
-// The XFEM mass (Paper 000 eqs. 76-82): cutting adds no mass (lumped u-part), a rigid
+// The XFEM mass (Schoch et al. eqs. 76-82): cutting adds no mass (lumped u-part), a rigid
 // translation of the whole body carries rho V |t|^2, and one of the piece above alone carries
 // rho V_above |t|^2, with V_above known in closed form for a plane through the beam; the
 // consistent mass entry by entry against eqs. 77-80 with the piece integrals in closed form,

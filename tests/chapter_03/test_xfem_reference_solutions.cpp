@@ -1,7 +1,7 @@
 // Linear XFEM against plain FEM solves that need no enrichment: a cut that misses the body
 // (chapter 1's system), a bar cut clean through along a node layer (two sub-meshes) and
 // obliquely through elements (two "phantom node" meshes with volume-scaled stiffnesses), a
-// half-depth cut along faces (the split_mesh_along_cut reference of Paper 000 section 6.1) and
+// half-depth cut along faces (the split_mesh_along_cut reference of Schoch et al. section 6.1) and
 // cuts that leave slivers (the minimum volume fraction rule).
 #include "xfem_test_support.hpp"
 

@@ -1,4 +1,4 @@
-// Corotational XFEM with crack-tip functions (issue 10, item 7): a tet with branch functions is
+// Corotational XFEM with crack-tip functions: a tet with branch functions is
 // turned by one rotation per piece, that of the piece's mean deformation gradient
 // (corotated_piece.hpp). Checked against what must hold whatever the formulas inside:
 // - on a plain Tet4's own four slots the piece formula IS chapter 2's point formula;

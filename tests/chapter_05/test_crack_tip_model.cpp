@@ -1,8 +1,8 @@
 // The XFEM model with crack-tip functions (chapter 5) against fields it must reproduce exactly:
 // the plane-strain Williams fields of modes I and II, which the four branch functions span
-// (notes 5.7), on a patch whose nodes all carry them, and a hanging column under gravity, a
+// (derived here, not in the papers), on a patch whose nodes all carry them, and a hanging column under gravity, a
 // quadratic field a Tet10 holds, whose branch coefficients are zero only if the branch rows of
-// the body force are integrated (Paulus section 4.2 drops them, notes 5.4).
+// the body force are integrated (Paulus section 4.2 drops them).
 #include "kerf/cut/crack_front.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/mesh_pieces.hpp"
@@ -104,7 +104,7 @@ TEST_CASE("a slab whose nodes all carry the branch functions reproduces the Will
       REQUIRE(body.branch.num_branch_nodes() == (order == 1 ? body.mesh.num_nodes() : 4 * 4 * 3));
       const auto exact = [&](const Eigen::Vector3d& x) { return williams(x, mode.K_I, mode.K_II, material); };
 
-      // The field in the branch functions, u = sum_l F_l c_l (notes 5.7, with the frame a = x,
+      // The field in the branch functions, u = sum_l F_l c_l (with the frame a = x,
       // b = y that the rectangle's normal gives).
       const std::array<Eigen::Vector3d, 4> c = support::williams_branch_coefficients(slab_front, mode.K_I, mode.K_II, material);
       const Eigen::Vector3d ex = Eigen::Vector3d::UnitX(), ey = Eigen::Vector3d::UnitY();

@@ -1,4 +1,4 @@
-// Chapter 5, item 4: a Dirichlet entry's "displacement_file". Malformed files are one-line
+// Chapter 5: a Dirichlet entry's "displacement_file". Malformed files are one-line
 // errors naming the file and the line; a node without a row is an error naming the node and the
 // file; a linear field prescribed by file on the whole boundary of a Tet4 and a Tet10 box is
 // reproduced inside to round-off (the patch test through the file path); and chapter 4's program

@@ -1,4 +1,4 @@
-// Degenerate crack fronts (issue 10, item 6): a front exactly through a node, along mesh edges,
+// Degenerate crack fronts: a front exactly through a node, along mesh edges,
 // lying in mesh faces, a cut in a plane of nodes (the front in its faces), a cut whose boundary
 // leaves the mesh, and two fronts in one tet (a narrow slit whose two ends share tets; two cuts
 // whose fronts pass the same tets). Each must give a solvable system with finite answers that
@@ -6,7 +6,7 @@
 // mesh alone; a linear field whose stress leaves the cut traction-free (the patch test: the
 // space holds it with every enrichment coefficient zero, so the solve must return it); and, for
 // a single straight front, Williams's field with every node branch enriched (the space holds it
-// exactly, notes 5.7).
+// exactly).
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/point_locator.hpp"
 

@@ -1,4 +1,4 @@
-// Chapter 3's front sweep again (issue 10, item 5): the tip deflection of the cut beam against
+// Chapter 3's front sweep again: the tip deflection of the cut beam against
 // the position x1 of the cut's front. Chapters 3 and 4 end the cut at the last row of enriched
 // nodes, so the answer is a step function of x1 and jumps where the front crosses a node row;
 // with branch functions the cut ends where it ends, and the answer moves continuously.

@@ -75,7 +75,7 @@ TEST_CASE("K of the exact field within 2e-5 on the finest mesh, modes I, II and 
                    << " / " << errors[1].transpose() << " / " << errors[2].transpose());
     CAPTURE(K.K_I);
     CAPTURE(K.K_II);
-    // The issue's target is 1 % on the finest mesh for an FE field; with the exact field the
+    // Kerf's target is 1 % on the finest mesh for an FE field; with the exact field the
     // integral itself must do far better: K_I and K_II within 2e-5 (10 times the measured) and
     // 4 times better than on the coarse mesh (measured 100 times), K_III within 3e-4.
     CHECK(errors[2].head<2>().maxCoeff() <= 2e-5);

@@ -1,4 +1,4 @@
-// A partial cut with a curved front on the beam (issue 10, item 5): a disc centred on the beam's
+// A partial cut with a curved front on the beam: a disc centred on the beam's
 // face x = 0, so that the half inside the beam ends on a half circle. The front found must be
 // that half circle, and with branch functions the cut must open behind the front and stay
 // closed (the field continuous) ahead of it.

@@ -1,5 +1,5 @@
 // K by the interaction integral in domain form (fracture/interaction_integral.hpp) of the XFEM
-// field with crack-tip functions (issue 10, item 5): Williams's field of modes I, II and mixed
+// field with crack-tip functions: Williams's field of modes I, II and mixed
 // prescribed on the boundary of the cracked slab (examples/williams_slab.hpp), solved with
 // geometric enrichment, K read from the field's gradient (CutXfemModel::displacement_gradient_at)
 // over the ring 0.1 m < r < 0.3 m around the front, against the K prescribed.
@@ -30,7 +30,7 @@ TEST_CASE("K_I and K_II of the XFEM field within 1 % for modes I, II and mixed w
   // misses there. Measured (examples/05_convergence_study.cpp, part "sif_radius";
   // figures/05_crack_tip/convergence.md): relative errors of (K_I, K_II)
   //   mode I 5.3e-3, 1.4e-3; mode II 1.3e-3, 2.1e-3; mixed (K_II = -0.6 K_I) 6.1e-3, 2.7e-3,
-  // and on n = 17 at most 1.0e-3. The bound is the issue's 1 %, 1.6 times the largest measured.
+  // and on n = 17 at most 1.0e-3. The bound is Kerf's target of 1 %, 1.6 times the largest measured.
   // With r_e = 0.1 m (the ring outside the enriched zone, standard Tet4 there) K_I errs by
   // 4.0 %, 4.2 % and 1.9 % on n = 9, 17, 33 with Paulus's blending, not within 1 % before
   // n = 65 (the test below); Fries's correction brings it to 0.07-0.12 % from n = 17 on

@@ -1,5 +1,5 @@
-// The conditioning of the static stiffness K_ff with crack-tip (branch) DOFs (issue 10, item 6;
-// xfem/stiffness_conditioning.hpp): how the condition number grows with the geometric
+// The conditioning of the static stiffness K_ff with crack-tip (branch) DOFs
+// (xfem/stiffness_conditioning.hpp): how the condition number grows with the geometric
 // enrichment radius, without a cure and with one, as growth exponents measured on a small box
 // (dense eigenvalues); and Bechet's node-block preconditioner against what it must do on any
 // symmetric positive definite matrix. (The front nearing a node or a face is in

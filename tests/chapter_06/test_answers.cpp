@@ -140,8 +140,8 @@ TEST_CASE("with the default solver the freed piece falls at g exactly, whatever 
 }
 
 TEST_CASE("with eqs. 81-82 as printed the freed piece does not fall at g") {
-  // The same run with Paper 000's lumping: a freed piece gets the inertia of whole elements and
-  // the consistent body load, so its probes miss g t^2 / 2 (notes 6.2): the test above can fail.
+  // The same run with Schoch et al.'s lumping: a freed piece gets the inertia of whole elements and
+  // the consistent body load, so its probes miss g t^2 / 2: the test above can fail.
   const auto dir = kerf_test::fresh_dir("chapter06_free_fall_eq81");
   kerf_test::write_text(dir / "scene.json", edited(kerf_test::read_text(examples + "/06_free_fall_lumped.json"),
                                                    {{"\"mass\": \"lumped\"", "\"mass\": \"schoch_eq_81_82\""}}));

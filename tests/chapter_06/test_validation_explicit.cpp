@@ -1,4 +1,4 @@
-// The central difference forced above its critical step (issue 11, item 3), on the demo's
+// The central difference forced above its critical step, on the demo's
 // flap (coarse: 3 x 2 x 6 cells), linear XFEM, per-piece lumped mass, gravity from t = 0.
 // Three claims, each against something independent of the integrator:
 //  - its estimate 2 / omega_max (power iteration, critical_time_step.hpp) is the true critical

@@ -1,8 +1,8 @@
-// Frozen rotations against Newton per step (issue 11, item 4) on the demo's flap, coarse (3 x 2
+// Frozen rotations against Newton per step on the demo's flap, coarse (3 x 2
 // x 6 cells), 0.16 s of its first swing: the flap tip's largest distance from a Newton run at
 // dt = 0.625 ms, at dt = 10, 5 and 2.5 ms. Newton solves each implicit step, so its error is
 // Newmark's, second order in dt; the frozen step's force f_int(u_n) + K_R (u - u_n) lags the
-// rotations by a step, an O(dt) error in the force, so it is first order (notes 6.3).
+// rotations by a step, an O(dt) error in the force, so it is first order.
 #include "../examples/cut_dynamics_scenes.hpp"
 
 #include <doctest/doctest.h>

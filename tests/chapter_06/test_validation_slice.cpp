@@ -1,8 +1,8 @@
-// Schoch Fig. 4, the falling slice (notes 6.5), as Kerf defines the scene: the top of Schoch's
+// Schoch Fig. 4, the falling slice (the paper gives no parameters), as Kerf defines the scene: the top of Schoch's
 // beam cut off but for a strip 5 mm wide, swinging under gravity about the strip. Linear XFEM
 // has only the linearised rigid rotation u = theta x r: it moves each point along the tangent,
 // turns a line across the axis by atan(theta) and lengthens it by sqrt(1 + theta^2), so a line
-// seen turned by phi is 1 / cos(phi) times as long (notes 6.6, ghost forces): the swinging
+// seen turned by phi is 1 / cos(phi) times as long (ghost forces): the swinging
 // slice "blows up". Corotational XFEM strains only what the rotation does not explain.
 #include "../examples/cut_dynamics_scenes.hpp"
 

@@ -1,4 +1,4 @@
-// Koschier Figs. 11 and 12 (notes 6.5), XFEM against element duplication on the scenes of
+// Koschier Figs. 11 and 12, XFEM against element duplication on the scenes of
 // examples/cut_dynamics_scenes.hpp. Fig. 12: a block hanging from a hinge, cut into a zig-zag that
 // unfolds. At rest gravity's moment about the hinge vanishes (a line of clamped nodes has no
 // moment about itself), so the centre of mass *the model has* hangs under the hinge whatever it

@@ -404,7 +404,7 @@ TEST_CASE("cut: the paper's beam with the half-depth cut at z = 0.1") {
     // At mid-height every crossing is an edge midpoint, with x index (i_bottom + i_top) / 2, so
     // a crossing lies in a rectangle x <= width (x index <= width / 0.01) when
     // i_bottom + i_top <= 2 width / 0.01. Border x = 0.015: sum <= 3, so some crossings lie
-    // exactly on the border and count as inside (Paper 003 uses the closure); x = 0.0125: sum <= 2.
+    // exactly on the border and count as inside (Paulus et al. use the closure); x = 0.0125: sum <= 2.
     // A tet is partially cut only if its section overlaps the rectangle in an area, which here
     // means a crossing strictly inside in x (sum < 2 width / 0.01): a section that reaches the
     // border x = 0.015 only at its edge lies beyond the cut.

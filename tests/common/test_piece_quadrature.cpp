@@ -325,8 +325,8 @@ TEST_CASE("Koschier's fitted moments: exact on planar cuts and on kinks, with th
   }
   MESSAGE("Koschier, right-angled and oblique kinks: worst difference / (V R^k) = " << worst_kink);
   // Two planes meeting along a line: measured exact here too (the divergence-free fields'
-  // fluxes on two planes through a line reach every pair of cubics that P^A . n can be); the
-  // notes feared otherwise. 1e-12 leaves room for the interface system's condition (~1e5).
+  // fluxes on two planes through a line reach every pair of cubics that P^A . n can be), which
+  // the fit does not promise. 1e-12 leaves room for the interface system's condition (~1e5).
   CHECK(worst_kink < 1e-12);
 }
 

@@ -1,4 +1,4 @@
-// The pre-cut reference mesh of chapter 3 (Paper 000 section 6.1): a box whose node layer
+// The pre-cut reference mesh of chapter 3 (Schoch et al. section 6.1): a box whose node layer
 // z = 0.1 follows a rectangular cut, opened by duplicating the nodes on the cut. Counts of
 // duplicated nodes (the front stays single), two components for a cut through the whole
 // section, a static solve in which the cut opens, and the rejection of a mesh that does not

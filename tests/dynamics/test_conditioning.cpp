@@ -1,4 +1,4 @@
-// Koschier's conditioning of the implicit step (Paper 002 section 6): the five-tet cube's
+// Koschier's conditioning of the implicit step (Koschier et al. section 6): the five-tet cube's
 // mesh; the bilateral preconditioner's entries on one tet cut by a plane, against eqs. 26-27
 // worked out by hand; the preconditioned solve (eqs. 24-25) against a direct one; and on the
 // cut cube of Fig. 14, the growth of the condition number of M + dt^2 K as the cut nears a face,
@@ -23,7 +23,7 @@
 
 namespace {
 
-const kerf::LinearMaterial cube_material{1e6, 0.3, 1000.0}; // Paper 002 section 7
+const kerf::LinearMaterial cube_material{1e6, 0.3, 1000.0}; // Koschier et al. section 7
 const double dt = 1e-3;
 
 double signed_volume(const kerf::TetMesh& mesh, Eigen::Index t) {
@@ -186,7 +186,7 @@ TEST_CASE("Fig. 14's cube cut through its centre: all eight nodes enriched, kapp
   const kerf::NewtonMatrixConditioning uncut = cube_cut_at(std::numeric_limits<double>::quiet_NaN());
   const kerf::NewtonMatrixConditioning centre = cube_cut_at(0.0);
   CHECK(uncut.enrichments == 0);
-  CHECK(centre.enrichments == 8); // notes 6.5: every tet is cut at x = 0, every node's support in two
+  CHECK(centre.enrichments == 8); // every tet is cut at x = 0, every node's support in two
   CHECK(centre.constrained == 0);
   // Koschier: "nearly two orders of magnitude higher" than the uncut matrix's (read off a
   // figure of an unstated five-tet split and norm); we measure 32 (14.3 -> 457): at least one

@@ -53,7 +53,7 @@ inline Eigen::Vector3d williams(const StraightFront& front, double K_I, double K
 }
 
 // The constant vectors c_l with Williams's modes I and II = sum_l F_l c_l in the front frame
-// (notes 5.7; A = K / (2 mu sqrt(2 pi))):
+// (A = K / (2 mu sqrt(2 pi))):
 //   mode I:  c_1 = A_I (kappa + 1) b,  c_2 = A_I (kappa - 1) a,  c_3 = A_I a,  c_4 = -A_I b;
 //   mode II: c_1 = A_II (kappa + 1) a, c_2 = -A_II (kappa - 1) b, c_3 = A_II b, c_4 = A_II a.
 inline std::array<Eigen::Vector3d, 4> williams_branch_coefficients(const StraightFront& front, double K_I, double K_II,

@@ -1,5 +1,5 @@
 // Chapter 3's reference mesh against CalculiX: the beam 0.03 x 0.06 x 0.2 m with a half-depth
-// cut at z = 0.1, opened by split_mesh_along_cut (Paper 000 section 6.1's "perfectly remeshed"
+// cut at z = 0.1, opened by split_mesh_along_cut (Schoch et al. section 6.1's "perfectly remeshed"
 // cut), solved by Kerf and by ccx (C3D4 and C3D10) under gravity along x with the base clamped.
 // The duplicated nodes are ordinary nodes to ccx, which knows nothing of the cut: agreement
 // says the split mesh is an ordinary, valid FE mesh whose two sides are really disconnected.
