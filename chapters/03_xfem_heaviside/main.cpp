@@ -9,7 +9,7 @@
 
    Description: the beam of chapters 1 and 2 (0.03 x 0.06 x 0.2 m, E = 300 kPa, nu = 0.35),
    clamped at z = 0, is cut half-way through its depth by the rectangle
-   [0, 0.015] x [0, 0.06] x {0.1} of Paper 000's test cases, on a mesh that does NOT conform
+   [0, 0.015] x [0, 0.06] x {0.1} of Schoch et al.'s test cases, on a mesh that does NOT conform
    to the cut: the plane z = 0.1 and the cut's front x = 0.015 run through the middle of
    elements. Its top edge x = 0 is pulled up by 0.02 m (the paper's test case 2), which opens
    the cut:
@@ -133,7 +133,7 @@ void CutElasticity::make_mesh() {
 //
 // First the level set: the signed distance of every node to the cut's plane (eq. 72),
 // snapped to exactly 0 within round-off of the plane. Its signs classify every tet
-// (eq. 73, and Paper 003's uncut / touched / partially / completely cut), and a tet the plane
+// (eq. 73, and Paulus et al.'s uncut / touched / partially / completely cut), and a tet the plane
 // splits is clipped into the sub-tets of its two pieces, whose volumes \f$V_a\f$ and
 // \f$V_b\f$ are all the stiffness needs.
 //
@@ -185,7 +185,7 @@ void CutElasticity::assemble_system() {
 // tet (the side's field is linear over it), so an inverted phantom is an inverted piece, but a
 // sliver's inversion weighs next to nothing.
 //
-// Reading Paper 000 alongside: eq. 61's second case should read \f$H_i = -1\f$; eq. 71 has its
+// Reading Schoch et al. alongside: eq. 61's second case should read \f$H_i = -1\f$; eq. 71 has its
 // two case labels swapped relative to eqs. 58-59 and ends in \f$x_{a_j}\f$ where the reference
 // position \f$x_{0_j}\f$ is meant; and the remark after eq. 63 that these results "hold for
 // quadratical elements, too" is false for the stiffness of a Tet10, whose strain is not constant
@@ -220,7 +220,7 @@ void CutElasticity::solve() {
 // Two views of the same solution. `NAME.vtu` is the mesh with its nodal displacements
 // \f$u_i\f$, as chapters 1 and 2 write it: with the shifted enrichment these are the nodes'
 // true displacements, but the mesh shows no cut. `NAME_pieces.vtu` is the XFEM view of
-// Paper 000's Figs. 7-8: every element with an enriched corner is written as its pieces, each
+// Schoch et al.'s Figs. 7-8: every element with an enriched corner is written as its pieces, each
 // displaced by the field of its own side, so the cut opens in ParaView. Probes are evaluated on
 // the side of the cut where each point lies.
 void CutElasticity::output_results() const {

@@ -215,7 +215,7 @@ void CutQuadrature::assemble_system() {
 //
 // As in chapter 3: one solve for linear XFEM, chapter 2's Newton iteration for the corotated
 // model, which now takes a rotation at every quadrature point of every piece of a Tet10 (the
-// phantom element's deformation gradient varies over the piece; Paper 000 eqs. 31-40 applied
+// phantom element's deformation gradient varies over the piece; Schoch et al. eqs. 31-40 applied
 // piece by piece).
 void CutQuadrature::solve() {
   if (scene_.model == "linear") {

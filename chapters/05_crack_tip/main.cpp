@@ -138,10 +138,10 @@ void CrackTip::make_mesh() {
 // The fronts: every boundary edge of a cut surface (an edge of one triangle only) that lies
 // inside the mesh, and not in its skin, where the cut is open rather than stopped. They are
 // chained into polylines with a frame at every point: a ahead of the front, b the cut's normal,
-// c along the front (notes 5.3), from which every point gets its polar coordinates
+// c along the front (Paulus section 3.4), from which every point gets its polar coordinates
 // r and theta = atan2(x_b, x_a) (Paulus section 3.4).
 //
-// The classification (Paulus section 3.3, notes 5.1). Chapter 3's rule enriched a node when the
+// The classification (Paulus section 3.3). Chapter 3's rule enriched a node when the
 // cut splits its support; the front's nodes, whose supports the front enters without splitting,
 // got nothing. Now a node is a *branch* node if it lies within the radius r_e of a front, or is
 // a corner of a tet the front passes through; it carries the four branch functions and no sign
@@ -227,7 +227,7 @@ void CrackTip::setup_system() {
 // @sect4{CrackTip::assemble_system}
 //
 // As in chapter 4, and the branch rows too: Paulus drops the body force on them (section 4.2),
-// which is wrong for gravity (notes 5.4); the model integrates N_v (F_l - F_l(x_v)) rho g with
+// which is wrong for gravity; the model integrates N_v (F_l - F_l(x_v)) rho g with
 // the same rules as the stiffness.
 void CrackTip::assemble_system() {
   f_ext_ = kerf::cut_xfem_scene_loads(scene_, *model_, boundary_);

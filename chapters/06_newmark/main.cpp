@@ -195,8 +195,8 @@ void CutDynamics::apply_cut() {
 // the DofMap without that check and say how many pieces fly free.
 //
 // The mass is the scene's choice (scene_dynamic_mass.hpp): the consistent XFEM mass of eqs.
-// 76-80, or a lumped one, by default the per-piece "virtual tet" lumping that the notes (6.2)
-// derive as the cure of eqs. 81-82, with the loads that go with it: with eqs. 81-82 a freed
+// 76-80, or a lumped one, by default the per-piece "virtual tet" lumping (as in Song, Areias and
+// Belytschko 2006) that cures eqs. 81-82, with the loads that go with it: with eqs. 81-82 a freed
 // piece moves with the inertia of its whole element, with the per-piece lumping it falls at g.
 // Crack-tip functions get their rows of the mass and of the body force (lumped_mass.hpp: the
 // branch rows are the consistent ones).
@@ -239,7 +239,7 @@ void CutDynamics::assemble_system() {
 
 // @sect4{CutDynamics::setup_linear_integrator}
 //
-// Linear XFEM with still clamps is M a + C v + K u = f (Paper 000 eq. 25) with constant
+// Linear XFEM with still clamps is M a + C v + K u = f (Schoch et al. eq. 25) with constant
 // matrices: the dynamics area's integrators take it as it is, each factorising its matrix
 // once. The central difference is explicit: its step must stay below 2 / omega_max, which it
 // estimates by power iteration; we report the estimate and refuse a larger step unless the
@@ -290,7 +290,7 @@ void CutDynamics::setup_linear_integrator() {
 
 // @sect4{CutDynamics::setup_nonlinear_integrator}
 //
-// The corotated body (Paper 000 eq. 40), or any body whose clamps move: the internal force is
+// The corotated body (Schoch et al. eq. 40), or any body whose clamps move: the internal force is
 // CutXfemModel::assemble's f_int(u) with its tangent, the elastic energy the corotated strain
 // energy whose gradient f_int is, and the clamps follow the scene's motion
 // (scene_prescribed_motion.hpp), with u, v and a the derivatives of one smooth ramp. The step
