@@ -39,32 +39,32 @@ TEST_CASE("enrichment rules: Kerf's sign-enriched nodes beside Schoch et al.'s a
   const kerf::Enrichment e = kerf::make_enrichment(mesh, kerf::RectangleCut({0, 0, 0.1003}, {0.0153, 0, 0}, {0, 0.06, 0}));
   using State = kerf::ElementCutState;
   // Schoch et al. (eq. 73, section 4.3): every node of every element the cut reaches.
-  const NodeSet paper000 = nodes_of_tets_in_state(mesh, e, {State::partially_cut, State::completely_cut});
+  const NodeSet schoch_nodes = nodes_of_tets_in_state(mesh, e, {State::partially_cut, State::completely_cut});
   // Paulus et al. (section 3.3): branch functions on the nodes of partially cut elements, signs on
   // the other nodes of completely cut ones.
-  const NodeSet branch003 = nodes_of_tets_in_state(mesh, e, {State::partially_cut});
-  const NodeSet sign003 = minus(nodes_of_tets_in_state(mesh, e, {State::completely_cut}), branch003);
+  const NodeSet paulus_branch = nodes_of_tets_in_state(mesh, e, {State::partially_cut});
+  const NodeSet paulus_sign = minus(nodes_of_tets_in_state(mesh, e, {State::completely_cut}), paulus_branch);
   const NodeSet kerf(e.enriched_nodes.begin(), e.enriched_nodes.end());
   NodeSet touching_beyond;
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     if (e.tet_side[static_cast<std::size_t>(t)] == kerf::TetSide::beyond)
       for (int a = 0; a < 4; ++a) touching_beyond.insert(mesh.tets(t, a));
 
-  MESSAGE("Schoch et al.: " << paper000.size() << " nodes; Paulus et al.: " << sign003.size() << " sign + "
-                            << branch003.size() << " branch; Kerf: " << kerf.size() << " sign, " << e.front_nodes
+  MESSAGE("Schoch et al.: " << schoch_nodes.size() << " nodes; Paulus et al.: " << paulus_sign.size() << " sign + "
+                            << paulus_branch.size() << " branch; Kerf: " << kerf.size() << " sign, " << e.front_nodes
                             << " front nodes left for chapter 5");
   REQUIRE(e.classification.count(State::partially_cut) > 0); // the front does run through tets
   // Kerf enriches a subset of Schoch et al.'s nodes: those with no tet beyond the front.
-  CHECK(includes(paper000, kerf));
-  CHECK(kerf == minus(paper000, touching_beyond));
+  CHECK(includes(schoch_nodes, kerf));
+  CHECK(kerf == minus(schoch_nodes, touching_beyond));
   // Every node Paulus et al. sign-enrich, Kerf does too ...
-  CHECK(includes(kerf, sign003));
+  CHECK(includes(kerf, paulus_sign));
   // ... and Kerf also sign-enriches some nodes Paulus et al. give branch functions: the nodes of
   // partially cut tets on the cut's side of the front.
-  const NodeSet branch_but_kerf_sign = minus(branch003, minus(branch003, kerf));
+  const NodeSet branch_but_kerf_sign = minus(paulus_branch, minus(paulus_branch, kerf));
   CHECK_FALSE(branch_but_kerf_sign.empty());
   // ... and leaves the others unenriched, for chapter 5: the nodes of partially cut tets that
   // also touch a tet beyond the front.
-  CHECK_FALSE(minus(branch003, kerf).empty());
-  CHECK(includes(touching_beyond, minus(branch003, kerf)));
+  CHECK_FALSE(minus(paulus_branch, kerf).empty());
+  CHECK(includes(touching_beyond, minus(paulus_branch, kerf)));
 }
