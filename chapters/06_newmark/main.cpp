@@ -444,8 +444,8 @@ void CutDynamics::run() {
   const bool moves = kerf::scene_dirichlet_moves(scene_);
   if (scene_.model == "linear" && !moves) setup_linear_integrator();
   else setup_nonlinear_integrator();
-  report("integrator: " + scene_.time.integrator +
-         (scene_.model == "corotational" ? ", rotations " + (scene_.time.corotation.empty() ? std::string("frozen") : scene_.time.corotation) : "") +
+  const std::string rotations = scene_.time.corotation.empty() ? "frozen" : scene_.time.corotation; // chapter 6's default
+  report("integrator: " + scene_.time.integrator + (scene_.model == "corotational" ? ", rotations " + rotations : "") +
          ", dt = " + std::to_string(scene_.time.dt) + " s, " + std::to_string(scene_.time.steps) + " steps");
   report("setup: " + std::to_string(seconds_since(start)) + " s");
 
