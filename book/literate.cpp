@@ -22,6 +22,12 @@
 //     blocks, formulas, link targets and HTML comments is left alone.
 //   - In listings, an `\endcode` in the code gets a zero-width space, so it cannot end the
 //     listing early, and the fence is longer than any run of backticks in the code.
+//   - In an intro.md or results.md, a line `<!-- kernel: FILE NAME -->` (FILE relative to the
+//     repository's top folder) becomes the listing of the library function NAME as FILE
+//     defines it: its comment lines above it, its signature at the start of a line, and its
+//     body to the first `}` at the start of a line. So a page shows the code that runs, not a
+//     copy of it. A kernel that is not defined exactly once in FILE is an error naming the
+//     page and line.
 //   - An unterminated formula, fence or code span is an error with the file and line, not a
 //     bad page. So is a chapter folder without main.cpp, intro.md, results.md, builds-on,
 //     kind or tooltip, or a builds-on that names no earlier chapter.
@@ -34,6 +40,7 @@
 //   kerf_literate book SOURCE_DIR OUT_DIR   all chapter pages and the main page with its map
 //   kerf_literate filter MAIN.cpp           the commented program of one file, on stdout
 //   kerf_literate header FILE.hpp           a library header made safe for Doxygen, on stdout
+//   kerf_literate page SOURCE_DIR FILE.md   an intro or results file as its chapter page shows it
 //
 // Plain C++20 and the standard library only: the book must build where Python is absent.
 
@@ -742,16 +749,101 @@ std::string escape_one_line(const std::string& text, const fs::path& file) {
   return out;
 }
 
-// A markdown file's body with its title removed and its headings moved down one level.
-std::string section_body(const fs::path& path, std::string* title) {
+// ---------------------------------------------------------------------------------------------
+// Kernels: library functions shown on a page.
+
+struct Kernel {
+  std::string file;     // relative to the repository's top folder
+  std::string function; // as it is spelled at its definition, e.g. "newmark_predict" or "Class::name"
+};
+
+// The kernel a line asks for, if it is a line `<!-- kernel: FILE NAME -->`.
+std::optional<Kernel> kernel_directive(const std::string& line, std::size_t line_number, const std::string& page) {
+  const std::string t = trim(line);
+  const std::string open = "<!-- kernel:", close = "-->";
+  if (!starts_with(t, open)) return std::nullopt;
+  if (t.size() < open.size() + close.size() || t.compare(t.size() - close.size(), close.size(), close) != 0)
+    fail(page, line_number, "a kernel line must be `<!-- kernel: FILE NAME -->` on one line");
+  std::istringstream words(t.substr(open.size(), t.size() - open.size() - close.size()));
+  Kernel kernel;
+  std::string extra;
+  if (!(words >> kernel.file >> kernel.function) || (words >> extra))
+    fail(page, line_number, "a kernel line must name a file and a function: `<!-- kernel: FILE NAME -->`");
+  return kernel;
+}
+
+// Whether `line` starts a definition of `name`: at the start of the line (no indentation), the
+// name as a whole word followed by '('.
+bool defines_at_line_start(const std::string& line, const std::string& name) {
+  if (line.empty() || std::isspace(static_cast<unsigned char>(line[0])) || starts_with(line, "//")) return false;
+  for (std::size_t at = line.find(name); at != std::string::npos; at = line.find(name, at + 1)) {
+    const bool starts_word = at == 0 || !(is_word_char(line[at - 1]) || line[at - 1] == ':');
+    const std::size_t after = at + name.size();
+    if (starts_word && after < line.size() && line[after] == '(') return true;
+  }
+  return false;
+}
+
+// The lines of the kernel's definition, with the comment lines right above it.
+std::vector<std::string> kernel_lines(const fs::path& source_root, const Kernel& kernel, std::size_t line_number,
+                                      const std::string& page) {
+  const fs::path file = source_root / kernel.file;
+  if (!fs::is_regular_file(file)) fail(page, line_number, "kernel file " + kernel.file + " does not exist");
+  const std::vector<std::string> lines = read_lines(file);
+  std::vector<std::size_t> starts;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (!defines_at_line_start(lines[k], kernel.function)) continue;
+    // A definition, not a declaration: a '{' comes before any ';' from here on.
+    for (std::size_t j = k; j < lines.size(); ++j) {
+      const std::size_t brace = lines[j].find('{'), semicolon = lines[j].find(';');
+      if (semicolon != std::string::npos && (brace == std::string::npos || semicolon < brace)) break;
+      if (brace != std::string::npos) {
+        starts.push_back(k);
+        break;
+      }
+    }
+  }
+  if (starts.size() != 1)
+    fail(page, line_number,
+         "kernel " + kernel.function + " is defined " + std::to_string(starts.size()) + " times at the start of a line in " +
+             kernel.file + " (it must be exactly once)");
+  std::size_t begin = starts.front(), end = begin;
+  while (end < lines.size() && lines[end] != "}") ++end;
+  if (end == lines.size()) fail(page, line_number, "kernel " + kernel.function + " in " + kernel.file + " has no closing `}` at the start of a line");
+  if (begin > 0 && starts_with(lines[begin - 1], "template")) --begin; // a template's parameter line
+  while (begin > 0 && is_comment_line(lines[begin - 1]) && !std::isspace(static_cast<unsigned char>(lines[begin - 1][0]))) --begin;
+  return std::vector<std::string>(lines.begin() + static_cast<long>(begin), lines.begin() + static_cast<long>(end) + 1);
+}
+
+// A markdown file's body with its title removed, its headings moved down one level and its
+// kernel lines replaced by the kernels' listings.
+std::string section_body(const fs::path& path, std::string* title, const fs::path& source_root) {
   auto lines = read_lines(path);
   std::size_t first = 0;
   if (const auto t = title_line(lines)) {
     if (title) *title = heading_text(lines[*t]);
     first = *t + 1;
   }
-  return escape_markdown(std::vector<std::string>(lines.begin() + static_cast<long>(first), lines.end()), first + 1,
-                         path.string());
+  std::string out;
+  std::vector<std::string> prose;
+  std::size_t prose_first = first + 1;
+  for (std::size_t k = first; k < lines.size(); ++k) {
+    const std::size_t line_number = k + 1;
+    const auto kernel = kernel_directive(lines[k], line_number, path.string());
+    if (!kernel) {
+      prose.push_back(lines[k]);
+      continue;
+    }
+    out += escape_markdown(prose, prose_first, path.string());
+    prose.clear();
+    prose_first = line_number + 1;
+    std::ostringstream listing;
+    listing << "From `" << kernel->file << "`:\n\n";
+    write_code_block(listing, kernel_lines(source_root, *kernel, line_number, path.string()), "cpp");
+    out += listing.str();
+  }
+  out += escape_markdown(prose, prose_first, path.string());
+  return out;
 }
 
 std::string chapter_page(const Chapter& c) {
@@ -767,14 +859,15 @@ std::string chapter_page(const Chapter& c) {
   out << "[TOC]\n\n";
 
   out << "## Introduction {#" << label(c) << "_intro}\n\n";
-  out << section_body(c.dir / "intro.md", nullptr) << "\n";
+  const fs::path source_root = c.dir.parent_path().parent_path();
+  out << section_body(c.dir / "intro.md", nullptr, source_root) << "\n";
 
   const auto program = read_lines(c.dir / "main.cpp");
   out << "## The commented program {#" << label(c) << "_commented}\n\n";
   out << commented_program(program, (c.dir / "main.cpp").string());
 
   std::string results_title = "Results";
-  const std::string results = section_body(c.dir / "results.md", &results_title);
+  const std::string results = section_body(c.dir / "results.md", &results_title, source_root);
   out << "## " << results_title << " {#" << label(c) << "_results}\n\n" << results << "\n";
 
   out << "## The plain program {#" << label(c) << "_plain}\n\n";
@@ -846,10 +939,13 @@ int main(int argc, char** argv) {
       std::cout << commented_program(read_lines(args[1]), args[1]);
     } else if (args.size() == 2 && args[0] == "header") {
       std::cout << filter_header(read_lines(args[1]));
+    } else if (args.size() == 3 && args[0] == "page") {
+      std::cout << section_body(args[2], nullptr, args[1]);
     } else {
       std::cerr << "usage: kerf_literate book SOURCE_DIR OUT_DIR\n"
                    "       kerf_literate filter MAIN.cpp\n"
-                   "       kerf_literate header FILE.hpp\n";
+                   "       kerf_literate header FILE.hpp\n"
+                   "       kerf_literate page SOURCE_DIR FILE.md\n";
       return 2;
     }
   } catch (const std::exception& e) {

@@ -3,7 +3,9 @@
 #     Doxygen must take the page without a warning;
 #   - every tests/book/NAME.cpp with a NAME.expected-error must be rejected with a message
 #     that contains that text (and names the file and line).
-#   cmake -DFILTER=kerf_literate -DDOXYGEN=doxygen -DINPUTS=tests/book -DWORK=dir -P test_filter.cmake
+#   - every tests/book/NAME.page.md is an intro or results file with kernel lines, checked the same
+#     way against NAME.page.expected.md or NAME.page.expected-error;
+#   cmake -DFILTER=kerf_literate -DDOXYGEN=doxygen -DINPUTS=tests/book -DSOURCE=top -DWORK=dir -P test_filter.cmake
 file(GLOB inputs ${INPUTS}/*.cpp)
 if(NOT inputs)
   message(FATAL_ERROR "no test inputs in ${INPUTS}")
@@ -38,6 +40,39 @@ foreach(input ${inputs})
     endif()
   else()
     string(APPEND failures "${name}: has neither ${name}.expected.md nor ${name}.expected-error\n")
+  endif()
+endforeach()
+
+# Pages with kernels: every NAME.page.md, run as a chapter's intro or results file is (the
+# kernels' files relative to SOURCE), against NAME.page.expected.md or NAME.page.expected-error.
+file(GLOB page_inputs ${INPUTS}/*.page.md)
+foreach(input ${page_inputs})
+  get_filename_component(file_name ${input} NAME)
+  string(REGEX REPLACE "\\.page\\.md$" "" name ${file_name})
+  file(RELATIVE_PATH relative ${SOURCE} ${input})
+  execute_process(COMMAND ${FILTER} page ${SOURCE} ${relative} WORKING_DIRECTORY ${SOURCE} RESULT_VARIABLE status
+                  OUTPUT_VARIABLE output ERROR_VARIABLE error)
+  if(EXISTS ${INPUTS}/${name}.page.expected.md)
+    file(READ ${INPUTS}/${name}.page.expected.md expected)
+    if(NOT status EQUAL 0)
+      string(APPEND failures "${file_name}: the page failed: ${error}\n")
+    elseif(NOT output STREQUAL expected)
+      file(WRITE ${WORK}/${name}.page.actual.md "${output}")
+      string(APPEND failures "${file_name}: output differs from ${name}.page.expected.md; see ${WORK}/${name}.page.actual.md\n")
+    endif()
+    file(WRITE ${WORK}/${name}.md "# Page test ${name} {#page_${name}}\n\n${output}")
+    list(APPEND pages ${WORK}/${name}.md)
+  elseif(EXISTS ${INPUTS}/${name}.page.expected-error)
+    file(STRINGS ${INPUTS}/${name}.page.expected-error message LIMIT_COUNT 1)
+    string(FIND "${error}" "${message}" found)
+    string(FIND "${error}" "${file_name}:" located)
+    if(status EQUAL 0)
+      string(APPEND failures "${file_name}: the page was accepted, it must be rejected\n")
+    elseif(found EQUAL -1 OR located EQUAL -1)
+      string(APPEND failures "${file_name}: expected an error with '${message}' and the file and line, got: ${error}\n")
+    endif()
+  else()
+    string(APPEND failures "${file_name}: has neither ${name}.page.expected.md nor ${name}.page.expected-error\n")
   endif()
 endforeach()
 
