@@ -75,6 +75,11 @@
 
 namespace chapter06 {
 
+// A corotated step freezes its rotations at the step's start unless the scene says otherwise
+// (time.corotation): this chapter's bodies turn slowly. Chapter 7's blade sets pieces spinning,
+// and checks the step instead.
+constexpr kerf::RotationUpdate default_rotations = kerf::RotationUpdate::frozen;
+
 // @sect3{The demo scene}
 //
 // Chapter 4's beam with Tet4 elements (a Tet10 beam works too, about eight times slower a
@@ -333,10 +338,7 @@ void CutDynamics::setup_nonlinear_integrator() {
   }
   kerf::NonlinearNewmarkSettings settings;
   settings.newmark = {time.beta, time.gamma};
-  // Chapter 6's default is the frozen step (Mueller and Gross): its bodies turn slowly.
-  settings.update = time.corotation == "newton"    ? kerf::RotationUpdate::newton
-                    : time.corotation == "checked" ? kerf::RotationUpdate::checked
-                                                     : kerf::RotationUpdate::frozen;
+  settings.update = kerf::rotation_update_named(time.corotation, default_rotations);
   settings.tolerance = time.tolerance;
   // The steps' solver: the scene's, or by default Jacobi-preconditioned conjugate gradients to
   // time.tolerance, started from the last step's acceleration. The mass term makes a step's matrix
@@ -444,7 +446,7 @@ void CutDynamics::run() {
   const bool moves = kerf::scene_dirichlet_moves(scene_);
   if (scene_.model == "linear" && !moves) setup_linear_integrator();
   else setup_nonlinear_integrator();
-  const std::string rotations = scene_.time.corotation.empty() ? "frozen" : scene_.time.corotation; // chapter 6's default
+  const std::string rotations = kerf::rotation_update_name(kerf::rotation_update_named(scene_.time.corotation, default_rotations));
   report("integrator: " + scene_.time.integrator + (scene_.model == "corotational" ? ", rotations " + rotations : "") +
          ", dt = " + std::to_string(scene_.time.dt) + " s, " + std::to_string(scene_.time.steps) + " steps");
   report("setup: " + std::to_string(seconds_since(start)) + " s");

@@ -585,9 +585,7 @@ void LiverCut::setup_system() {
   settings.newmark = {scene_.time.beta, scene_.time.gamma};
   // Chapter 7's default is the checked step: the blade carves slabs and chips that turn a good
   // part of a radian in a step, where the frozen step's lagged rotations feed their energy.
-  settings.update = scene_.time.corotation == "frozen"   ? kerf::RotationUpdate::frozen
-                    : scene_.time.corotation == "newton" ? kerf::RotationUpdate::newton
-                                                         : kerf::RotationUpdate::checked;
+  settings.update = kerf::rotation_update_named(scene_.time.corotation, kerf::RotationUpdate::checked);
   settings.tolerance = scene_.time.tolerance;
   settings.solver = scene_.solver;
   if (!scene_.solver_given) {

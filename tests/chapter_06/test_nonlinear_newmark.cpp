@@ -232,3 +232,11 @@ TEST_CASE("a free DOF without mass: the start's acceleration is refused, naming 
                          doctest::Contains("the mass matrix M_ff on 6 free DOFs is not positive definite"), kerf::NotPositiveDefinite);
   }
 }
+
+TEST_CASE("a scene's corotation names its rotation update; none named is the chapter's default") {
+  for (const kerf::RotationUpdate update : {kerf::RotationUpdate::frozen, kerf::RotationUpdate::checked, kerf::RotationUpdate::newton}) {
+    CHECK(kerf::rotation_update_named(kerf::rotation_update_name(update), kerf::RotationUpdate::frozen) == update);
+    CHECK(kerf::rotation_update_named("", update) == update);
+  }
+  CHECK_THROWS_AS(kerf::rotation_update_named("lagged", kerf::RotationUpdate::frozen), std::invalid_argument);
+}

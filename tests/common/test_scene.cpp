@@ -174,6 +174,7 @@ TEST_CASE("every malformed scene names the file and the field on one line") {
       {"{" + m + R"(, "time": {"integrator": "central_difference", "dt": 0.01, "steps": 5, "mass": "consistent"}})", "time.mass"},
       {"{" + m + R"(, "time": {"integrator": "hht_alpha", "dt": 0.01, "steps": 5, "alpha": -0.5}})", "time.alpha"},
       {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "corotation": "lagged"}})", "time.corotation"},
+      {"{" + m + R"(, "time": {"integrator": "newmark", "dt": 0.01, "steps": 5, "corotation": ""}})", "time.corotation"},
       {"{" + m + R"(, "time": {"integrator": "static", "corotation": "newton"}})", "time.corotation"},
       {"{" + m + R"(, "dirichlet": [{"region": {"nodes": [0]}, "ramp_time": -1}], "time": {"integrator": "newmark", "dt": 0.01, "steps": 5}})",
        "dirichlet[0].ramp_time"},

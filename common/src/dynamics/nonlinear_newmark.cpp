@@ -20,6 +20,22 @@ std::string step_matrix_failure(const std::string& matrix, Eigen::Index num_free
 
 } // namespace
 
+RotationUpdate rotation_update_named(const std::string& name, RotationUpdate chapter_default) {
+  if (name.empty()) return chapter_default;
+  for (const RotationUpdate update : {RotationUpdate::frozen, RotationUpdate::checked, RotationUpdate::newton})
+    if (name == rotation_update_name(update)) return update;
+  throw std::invalid_argument("rotation_update_named: expected \"frozen\", \"checked\" or \"newton\", got \"" + name + "\"");
+}
+
+const char* rotation_update_name(RotationUpdate update) {
+  switch (update) {
+  case RotationUpdate::frozen: return "frozen";
+  case RotationUpdate::checked: return "checked";
+  case RotationUpdate::newton: return "newton";
+  }
+  return "frozen";
+}
+
 NonlinearNewmarkIntegrator::NonlinearNewmarkIntegrator(const NonlinearDynamicSystem& system, double dt,
                                                        NonlinearNewmarkSettings settings)
     : system_(system), dt_(dt), settings_(settings), solver_(make_linear_solver(settings.solver)) {

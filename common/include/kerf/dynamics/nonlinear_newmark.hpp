@@ -14,6 +14,7 @@
 #include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace kerf {
@@ -76,6 +77,13 @@ enum class RotationUpdate {
   /// blade carves chips that turn faster than the frozen step follows, whose energy the lag feeds.
   checked,
 };
+
+/// The update a scene's `time.corotation` names: "frozen", "checked" or "newton"; empty (the
+/// scene names none): the chapter's own default.
+/// @throws std::invalid_argument for any other name (the scene reader refuses those first)
+RotationUpdate rotation_update_named(const std::string& name, RotationUpdate chapter_default);
+/// The scene's name of an update: "frozen", "checked" or "newton".
+const char* rotation_update_name(RotationUpdate update);
 
 struct NonlinearNewmarkSettings {
   NewmarkParameters newmark;                   ///< beta, gamma (default: average acceleration)
