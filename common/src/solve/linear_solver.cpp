@@ -205,15 +205,15 @@ private:
       active[c] = residual_norm2[c] >= threshold[c];
     }
     const auto any_active = [&] { return std::find(active.begin(), active.end(), 1) != active.end(); };
-    // target += value[c] v on each active component c (the converged ones then stay where they are).
-    const auto add_scaled = [&](const std::vector<double>& value, const Eigen::VectorXd& v, Eigen::VectorXd& target) {
+    // target += sign value[c] v on each active component c (the converged ones then stay where they are).
+    const auto add_scaled = [&](double sign, const std::vector<double>& value, const Eigen::VectorXd& v, Eigen::VectorXd& target) {
       if (C == 1) {
-        if (active[0]) target += value[0] * v;
+        if (active[0]) target += (sign * value[0]) * v;
         return;
       }
       for (Eigen::Index j = 0; j < n; ++j) {
         const auto c = static_cast<std::size_t>(component_[static_cast<std::size_t>(j)]);
-        if (active[c]) target[j] += value[c] * v[j];
+        if (active[c]) target[j] += sign * value[c] * v[j];
       }
     };
     iterations_ = 0;
@@ -230,9 +230,8 @@ private:
         S_transpose_times(Aq_.head(n), Ap_w_);
         per_component(p_w_, Ap_w_, pAp);
         for (std::size_t c = 0; c < C; ++c) alpha[c] = active[c] ? rz[c] / pAp[c] : 0.0;
-        add_scaled(alpha, p_w_, dx_w_);
-        for (std::size_t c = 0; c < C; ++c) alpha[c] = -alpha[c];
-        add_scaled(alpha, Ap_w_, r_w_);
+        add_scaled(1.0, alpha, p_w_, dx_w_);
+        add_scaled(-1.0, alpha, Ap_w_, r_w_);
         per_component(r_w_, r_w_, residual_norm2);
         for (std::size_t c = 0; c < C; ++c) active[c] = active[c] && residual_norm2[c] >= threshold[c];
         if (!any_active()) break;
