@@ -46,13 +46,7 @@ SpinRun spin(kerf::RotationUpdate update, double omega, double dt, int steps) {
   system.motion = [size](double) {
     return kerf::PrescribedMotion{Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size)};
   };
-  system.internal_force = [&](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                              const Eigen::SparseMatrix<double>** K) {
-    Eigen::VectorXd unused = Eigen::VectorXd::Zero(size);
-    if (K) assembler->set_zero();
-    body.model.assemble(u, kerf::RotationMethod::automatic, tangent, f_int, K ? assembler.get() : nullptr, K ? &unused : nullptr);
-    if (K) *K = &assembler->matrix();
-  };
+  system.internal_force = cut_body::corotated_force(body.model, assembler);
   system.elastic_energy = [&](const Eigen::VectorXd& u) { return body.model.energy(u, true); };
 
   // v = omega e_z x (X - c) at every node: a rigid spin (the model's DOF nodes are the mesh's).

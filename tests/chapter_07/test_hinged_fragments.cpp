@@ -52,14 +52,7 @@ struct HangingTet {
     system.dofs = kerf::make_dof_map(body.model.num_dof_nodes(), {{held, {0, 0, 0}}});
     system.load = [weight](double) { return weight; };
     system.motion = [zero](double) { return kerf::PrescribedMotion{zero, zero, zero}; };
-    system.internal_force = [this, size](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent,
-                                         Eigen::VectorXd& f_int, const Eigen::SparseMatrix<double>** K) {
-      Eigen::VectorXd unused = Eigen::VectorXd::Zero(size);
-      if (K) assembler->set_zero();
-      body.model.assemble(u, kerf::RotationMethod::automatic, tangent, f_int, K ? assembler.get() : nullptr,
-                          K ? &unused : nullptr);
-      if (K) *K = &assembler->matrix();
-    };
+    system.internal_force = cut_body::corotated_force(body.model, assembler);
     system.elastic_energy = [this](const Eigen::VectorXd& u) { return body.model.energy(u, true); };
   }
 

@@ -66,14 +66,7 @@ TEST_CASE("a squeezed sliver's phantom node: Newton falls back to the frozen ste
   system.rayleigh_beta = rayleigh_beta;
   system.dofs = kerf::make_dof_map(body.model.num_dof_nodes(), {{held, {0, 0, 0}}});
   system.motion = [zero](double) { return kerf::PrescribedMotion{zero, zero, zero}; };
-  system.internal_force = [&](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
-                              const Eigen::SparseMatrix<double>** K) {
-    Eigen::VectorXd unused = Eigen::VectorXd::Zero(size);
-    if (K) assembler->set_zero();
-    body.model.assemble(u, kerf::RotationMethod::automatic, tangent, f_int, K ? assembler.get() : nullptr,
-                        K ? &unused : nullptr);
-    if (K) *K = &assembler->matrix();
-  };
+  system.internal_force = cut_body::corotated_force(body.model, assembler);
   system.elastic_energy = [&](const Eigen::VectorXd& u) { return body.model.energy(u, true); };
   // Its Bernstein mass rho int L_0 over the sliver, a tet whose corners have L_0 = 0, 0, 0 and
   // 1 - 0.57: rho V_sliver 0.43 / 4, a tenth of the sliver's mass (1.5e-6 kg).

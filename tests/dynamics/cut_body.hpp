@@ -7,6 +7,7 @@
 #include "kerf/cut/mesh_pieces.hpp"
 #include "kerf/dynamics/linear_dynamic_system.hpp"
 #include "kerf/dynamics/newmark.hpp"
+#include "kerf/dynamics/nonlinear_newmark.hpp"
 #include "kerf/fem/dof_map.hpp"
 #include "kerf/fem/sparse_assembler.hpp"
 #include "kerf/quadrature/gauss_piece_rules.hpp"
@@ -15,6 +16,7 @@
 
 #include <Eigen/Geometry>
 #include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -106,6 +108,19 @@ inline kerf::TetMesh unit_tet() {
   mesh.tets.resize(1, 4);
   mesh.tets << 0, 1, 2, 3;
   return mesh;
+}
+
+// The corotated force of `model` and, when asked, its tangent (on all DOFs, every one free), for
+// kerf::NonlinearDynamicSystem: the tangent is assembled into `assembler`, which keeps the matrix
+// the integrator reads until the next call (InternalForce).
+inline kerf::InternalForce corotated_force(const kerf::CutXfemModel& model, std::shared_ptr<kerf::SparseAssembler> assembler) {
+  return [&model, assembler](const Eigen::VectorXd& u, kerf::CorotationalTangent tangent, Eigen::VectorXd& f_int,
+                             const Eigen::SparseMatrix<double>** K) {
+    Eigen::VectorXd unused = Eigen::VectorXd::Zero(u.size());
+    if (K) assembler->set_zero();
+    model.assemble(u, kerf::RotationMethod::automatic, tangent, f_int, K ? assembler.get() : nullptr, K ? &unused : nullptr);
+    if (K) *K = &assembler->matrix();
+  };
 }
 
 } // namespace cut_body
