@@ -1,0 +1,67 @@
+/// @file corotated_pieces.hpp
+/// @brief The corotated strain energy of a Tet4 body, cut or not, as one flat list of linear
+///        pieces: W(u), its gradient f_int(u), and products with the warped stiffness, all
+///        without a matrix (chapter 8's step evaluates them a few times per time step).
+#pragma once
+#include "kerf/corotation/corotated_element.hpp"
+#include "kerf/fem/linear_material.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace kerf {
+
+class CutXfemModel;
+
+/// On a piece of a Tet4 (a whole tet, or one piece of a cut tet) the field is linear: its
+/// phantom element has the nodal values u_a + a_k (cut_xfem_model.hpp), so the deformation
+/// gradient is one matrix,
+///
+///   F = I + sum_s q_s g_s^T,                                                    (8.1)
+///
+/// over the piece's slots s: its four nodes, and the enrichment each phantom node takes, every
+/// slot with the gradient g_s = grad N_a of its node's shape function. With R the rotation of F
+/// and the linear material's strain R^T F - I (symmetric for the polar R), the piece's energy is
+/// V psi(F), the corotated element's 1/2 d^T K d (corotated_element.hpp), with
+///
+///   psi(F) = mu |R^T F - I|^2 + lambda/2 tr(R^T F - I)^2,                       (8.2)
+///   P(F) = d psi / dF = 2 mu (F - R) + lambda tr(R^T F - I) R                   (8.3)
+///
+/// (the terms from dR/dF vanish for the polar rotation: McAdams et al. 2011), and the force on
+/// slot s is V P g_s. The warped stiffness K_R = R K R^T (Schoch et al. 2013, eq. 38) applied to
+/// d is the same loop with the linear stress of the strain sym(R^T D), D = sum_s d_s g_s^T.
+///
+/// A chapter 7 model with Tet4 and without branch functions is exactly this sum; its assembly
+/// gives the same W and f_int (tests/chapter_08/test_corotated_pieces.cpp).
+class CorotatedPieces {
+public:
+  /// Every integrated piece of `model` (kept by value: the model may go).
+  /// @throws std::invalid_argument for a Tet10 model or one with branch functions
+  CorotatedPieces(const CutXfemModel& model, const LinearMaterial& material, RotationMethod rotation);
+
+  Eigen::Index num_dof_nodes() const { return num_dof_nodes_; }
+  Eigen::Index num_pieces() const { return static_cast<Eigen::Index>(volume_.size()); }
+
+  /// W(u) (J) and f_int(u) = dW/du (3 num_dof_nodes(), N); the rotation of every piece into
+  /// `rotations`. If `rotations` holds one per piece already (the last evaluation's), each is
+  /// found from there (a step moves them little); else from the identity.
+  double energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int, std::vector<Eigen::Matrix3d>& rotations) const;
+  /// K_R d with the warped stiffness at `rotations` (one per piece), and 1/2 d^T K_R d (J).
+  double warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
+  /// The scalar Laplacian on the DOF nodes, L_ij = sum_p V_p g_i . g_j (m), summed over the
+  /// slots of every piece: each Cartesian component's block of the linear stiffness of a
+  /// material with mu = 1, lambda = 0 and no cross terms (8.5).
+  Eigen::SparseMatrix<double> laplacian() const;
+
+private:
+  Eigen::Index num_dof_nodes_ = 0;
+  double mu_ = 0.0, lambda_ = 0.0;
+  RotationMethod rotation_;
+  std::vector<double> volume_;              // V_p
+  std::vector<int> first_slot_;             // piece p's slots are [first_slot_[p], first_slot_[p + 1])
+  std::vector<int> slot_node_;              // the DOF node of each slot
+  std::vector<Eigen::Vector3d> slot_gradient_; // g_s (1/m)
+};
+
+} // namespace kerf

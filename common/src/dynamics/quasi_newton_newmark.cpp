@@ -1,0 +1,255 @@
+#include "kerf/dynamics/quasi_newton_newmark.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace kerf {
+
+namespace {
+
+double inner(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) { return x.cwiseProduct(y).sum(); }
+
+// The scalar part m_ij of a mass whose 3x3 blocks are m_ij I_3.
+Eigen::SparseMatrix<double> scalar_mass(const Eigen::SparseMatrix<double>& M) {
+  std::vector<Eigen::Triplet<double>> scalar, expanded;
+  for (Eigen::Index j = 0; j < M.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, j); it; ++it)
+      if (it.row() % 3 == 0 && it.col() % 3 == 0) {
+        scalar.emplace_back(static_cast<int>(it.row() / 3), static_cast<int>(it.col() / 3), it.value());
+        for (int c = 0; c < 3; ++c) expanded.emplace_back(static_cast<int>(it.row() + c), static_cast<int>(it.col() + c), it.value());
+      }
+  Eigen::SparseMatrix<double> M_s(M.rows() / 3, M.cols() / 3), M_3(M.rows(), M.cols());
+  M_s.setFromTriplets(scalar.begin(), scalar.end());
+  M_3.setFromTriplets(expanded.begin(), expanded.end());
+  if ((M_3 - M).norm() > 1e-12 * M.norm())
+    throw std::invalid_argument("QuasiNewtonNewmark: the mass is not the same in x, y and z (m_ij I_3 per node pair)");
+  return M_s;
+}
+
+// The rows and columns of a node-indexed matrix at the nodes with a position (>= 0), in that order.
+Eigen::SparseMatrix<double> restrict_to(const Eigen::SparseMatrix<double>& A, const std::vector<int>& position, Eigen::Index size) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
+      const int r = position[static_cast<std::size_t>(it.row())], c = position[static_cast<std::size_t>(it.col())];
+      if (r >= 0 && c >= 0) entries.emplace_back(r, c, it.value());
+    }
+  Eigen::SparseMatrix<double> restricted(size, size);
+  restricted.setFromTriplets(entries.begin(), entries.end());
+  return restricted;
+}
+
+} // namespace
+
+QuasiNewtonNewmark::QuasiNewtonNewmark(double dt, const LinearMaterial& material, QuasiNewtonNewmarkSettings settings)
+    : dt_(dt), material_(material), settings_(settings) {
+  if (!(dt > 0.0)) throw std::invalid_argument("QuasiNewtonNewmark: the time step must be positive");
+  if (!(settings_.newmark.beta > 0.0)) throw std::invalid_argument("QuasiNewtonNewmark: Newmark's beta must be positive (an implicit step)");
+  if (settings_.history < 0 || settings_.iterations < 0) throw std::invalid_argument("QuasiNewtonNewmark: negative iteration counts");
+}
+
+void QuasiNewtonNewmark::set_body(QuasiNewtonBody body) {
+  body_ = std::move(body);
+  last_valid_ = false;
+  pairs_.clear();
+  const Eigen::Index nodes = body_.pieces->num_dof_nodes();
+  if (body_.M.rows() != 3 * nodes || body_.load.size() != 3 * nodes || static_cast<Eigen::Index>(body_.dofs.free_index.size()) != 3 * nodes)
+    throw std::invalid_argument("QuasiNewtonNewmark::set_body: the mass, load and DOF map must have 3 entries per DOF node");
+  // The free DOF nodes, the mesh's first: each node free in all three components or in none.
+  free_nodes_.clear();
+  Eigen::Index num_standard = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (Eigen::Index i = 0; i < nodes; ++i) {
+      if ((i < body_.num_standard_nodes) != (pass == 0)) continue;
+      int free = 0;
+      for (int c = 0; c < 3; ++c) free += body_.dofs.free_index[static_cast<std::size_t>(3 * i + c)] >= 0;
+      if (free != 0 && free != 3)
+        throw std::invalid_argument("QuasiNewtonNewmark: DOF node " + std::to_string(i) +
+                                    " is held in some components only; chapter 8's matrix holds whole nodes");
+      if (free == 3) {
+        free_nodes_.push_back(static_cast<int>(i));
+        num_standard += pass == 0;
+      }
+    }
+  // (8.4)'s constants and (8.6)'s matrix on the free nodes.
+  const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
+  c_M_ = 1.0 / (beta * dt_ * dt_) + body_.rayleigh_alpha * gamma / (beta * dt_);
+  c_D_ = body_.rayleigh_beta * gamma / (beta * dt_);
+  const double mu = material_.mu();
+  const double kappa = mu * (settings_.stiffness_in_mu > 0.0 ? settings_.stiffness_in_mu : 2.0 + material_.lambda() / mu);
+  const Eigen::SparseMatrix<double> A = c_M_ * scalar_mass(body_.M) + (1.0 + c_D_) * kappa * body_.pieces->laplacian();
+  free_position_.assign(static_cast<std::size_t>(nodes), -1);
+  for (std::size_t k = 0; k < free_nodes_.size(); ++k) free_position_[static_cast<std::size_t>(free_nodes_[k])] = static_cast<int>(k);
+  free_mask_.setZero(3 * nodes);
+  for (int node : free_nodes_) free_mask_.segment<3>(3 * node).setOnes();
+  const auto n = static_cast<Eigen::Index>(free_nodes_.size());
+  A_free_ = restrict_to(A, free_position_, n);
+  const Eigen::Index k = n - num_standard;
+  const Eigen::SparseMatrix<double> A_ss = A_free_.topLeftCorner(num_standard, num_standard);
+  // The standard block is the uncut body's: keep its factor (growing_cholesky.hpp).
+  const bool same = factor_ && factor_->leading_size() == num_standard &&
+                    (A_ss - factor_->leading_block()).norm() <= 1e-12 * factor_->leading_block().norm();
+  if (!same) {
+    factor_ = std::make_unique<GrowingCholesky>(A_ss);
+    ++factorisations_;
+  }
+  factor_->set_trailing(A_free_.topRightCorner(num_standard, k), A_free_.bottomRightCorner(k, k));
+}
+
+void QuasiNewtonNewmark::evaluate(const Eigen::VectorXd& u) {
+  if (last_valid_ && last_u_.size() == u.size() && last_u_ == u) return;
+  last_W_ = body_.pieces->energy(u, last_f_int_, last_rotations_);
+  last_u_ = u;
+  last_valid_ = true;
+}
+
+double QuasiNewtonNewmark::elastic_energy(const Eigen::VectorXd& u) {
+  evaluate(u);
+  return last_W_;
+}
+
+Eigen::MatrixXd QuasiNewtonNewmark::gather(const Eigen::VectorXd& full) const {
+  Eigen::MatrixXd free(static_cast<Eigen::Index>(free_nodes_.size()), 3);
+  for (std::size_t k = 0; k < free_nodes_.size(); ++k) free.row(static_cast<Eigen::Index>(k)) = full.segment<3>(3 * free_nodes_[k]).transpose();
+  return free;
+}
+
+void QuasiNewtonNewmark::scatter_add(const Eigen::MatrixXd& free, Eigen::VectorXd& full) const {
+  for (std::size_t k = 0; k < free_nodes_.size(); ++k) full.segment<3>(3 * free_nodes_[k]) += free.row(static_cast<Eigen::Index>(k)).transpose();
+}
+
+DynamicState QuasiNewtonNewmark::initial_state(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, double t0) {
+  DynamicState state{t0, u0, v0, Eigen::VectorXd::Zero(u0.size())};
+  evaluate(u0);
+  Eigen::VectorXd Kv;
+  body_.pieces->warped_product(last_rotations_, v0, Kv);
+  const Eigen::VectorXd r = body_.load - last_f_int_ - body_.rayleigh_alpha * (body_.M * v0) - body_.rayleigh_beta * Kv;
+  // M_ff a_f = r_f with the scalar mass of the free nodes.
+  const Eigen::SparseMatrix<double> M_ff =
+      restrict_to(scalar_mass(body_.M), free_position_, static_cast<Eigen::Index>(free_nodes_.size()));
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass(M_ff);
+  if (mass.info() != Eigen::Success) throw std::runtime_error("QuasiNewtonNewmark: the free nodes' mass is not positive definite");
+  const Eigen::MatrixXd a_f = mass.solve(gather(r));
+  scatter_add(a_f, state.a);
+  return state;
+}
+
+EnergyAccount QuasiNewtonNewmark::start_account(const DynamicState& state) {
+  EnergyAccount account;
+  account.kinetic = 0.5 * state.v.dot(body_.M * state.v);
+  account.elastic = elastic_energy(state.u);
+  return account;
+}
+
+double QuasiNewtonNewmark::step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient) {
+  evaluate(u);
+  const Eigen::VectorXd delta = u - u_tilde_;
+  const Eigen::VectorXd M_delta = body_.M * delta;
+  Eigen::VectorXd K_delta;
+  const double half_dKd = body_.pieces->warped_product(rotations_n_, delta, K_delta);
+  gradient = c_M_ * M_delta + c_D_ * K_delta + last_f_int_ - b_;
+  return 0.5 * c_M_ * delta.dot(M_delta) + c_D_ * half_dKd + last_W_ - b_.dot(u);
+}
+
+QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
+  const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
+  QuasiNewtonStepReport report;
+  evaluate(state.u);
+  rotations_n_ = last_rotations_;
+  const double W_n = last_W_;
+  // Newmark's predictors, zero on the held (still) DOFs.
+  u_tilde_ = (state.u + dt_ * state.v + dt_ * dt_ * (0.5 - beta) * state.a).cwiseProduct(free_mask_);
+  const Eigen::VectorXd v_tilde = (state.v + dt_ * (1.0 - gamma) * state.a).cwiseProduct(free_mask_);
+  Eigen::VectorXd K_v;
+  body_.pieces->warped_product(rotations_n_, v_tilde, K_v);
+  b_ = body_.load - body_.rayleigh_alpha * (body_.M * v_tilde) - body_.rayleigh_beta * K_v;
+
+  // L-BFGS on (8.4) from the guess a_{n+1} = a_n, with A^{-1} (8.6) as the initial inverse Hessian.
+  Eigen::VectorXd x = u_tilde_ + beta * dt_ * dt_ * state.a.cwiseProduct(free_mask_);
+  Eigen::VectorXd gradient;
+  double E = step_energy(x, gradient);
+  Eigen::MatrixXd g = gather(gradient);
+  const double scale = std::max(g.norm(), gather(body_.load).norm());
+  if (!settings_.keep_history) pairs_.clear();
+  auto& pairs = pairs_;
+  const bool tight = settings_.tolerance > 0.0;
+  for (int it = 0;; ++it) {
+    report.relative_gradient = scale > 0.0 ? g.norm() / scale : 0.0;
+    if (tight && report.relative_gradient <= settings_.tolerance) break;
+    if (tight && it >= settings_.max_iterations) {
+      report.converged = false;
+      break;
+    }
+    if (!tight && it >= settings_.iterations) break;
+    // The two-loop recursion: d = -H g.
+    Eigen::MatrixXd q = g;
+    std::vector<double> alphas(pairs.size());
+    for (std::size_t i = pairs.size(); i-- > 0;) {
+      alphas[i] = inner(pairs[i].first, q) / inner(pairs[i].second, pairs[i].first);
+      q -= alphas[i] * pairs[i].second;
+    }
+    factor_->solve(q);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const double b = inner(pairs[i].second, q) / inner(pairs[i].second, pairs[i].first);
+      q += (alphas[i] - b) * pairs[i].first;
+    }
+    Eigen::MatrixXd d = -q;
+    double slope = inner(g, d);
+    if (!(slope < 0.0)) { // not a descent direction: forget the pairs, take A^{-1}'s
+      pairs.clear();
+      d = -g;
+      factor_->solve(d);
+      slope = inner(g, d);
+    }
+    // Backtracking on E_n: the full step unless it fails Armijo's test.
+    double step_length = 1.0;
+    Eigen::VectorXd x_new, gradient_new;
+    double E_new = 0.0;
+    for (;;) {
+      x_new = x;
+      scatter_add(step_length * d, x_new);
+      E_new = step_energy(x_new, gradient_new);
+      ++report.iterations;
+      if (E_new <= E + 1e-4 * step_length * slope || step_length < 1.0 / 64.0) break;
+      step_length *= 0.5;
+    }
+    const Eigen::MatrixXd g_new = gather(gradient_new);
+    Eigen::MatrixXd s = step_length * d, y = g_new - g;
+    if (inner(s, y) > 1e-12 * s.norm() * y.norm()) {
+      pairs.emplace_back(std::move(s), std::move(y));
+      if (static_cast<int>(pairs.size()) > settings_.history) pairs.pop_front();
+    }
+    x = std::move(x_new);
+    g = g_new;
+    E = E_new;
+  }
+  // Newmark's correctors.
+  DynamicState end{state.t + dt_, x, Eigen::VectorXd(), (x - u_tilde_) / (beta * dt_ * dt_)};
+  end.a = end.a.cwiseProduct(free_mask_);
+  end.v = v_tilde + gamma * dt_ * end.a;
+  // The works: the load's, and the damping's Delta u . C v_bar with the step's C; the rest of the
+  // balance is the step's own (energy_account.hpp).
+  const Eigen::VectorXd du = end.u - state.u;
+  const Eigen::VectorXd v_bar = 0.5 * (state.v + end.v);
+  Eigen::VectorXd K_vbar;
+  body_.pieces->warped_product(rotations_n_, v_bar, K_vbar);
+  report.energy.external_work = du.dot(body_.load);
+  report.energy.damping = du.dot(body_.rayleigh_alpha * (body_.M * v_bar) + body_.rayleigh_beta * K_vbar);
+  const double kinetic_change = 0.5 * end.v.dot(body_.M * end.v) - 0.5 * state.v.dot(body_.M * state.v);
+  const double W_end = elastic_energy(end.u);
+  report.energy.numerical = report.energy.external_work - report.energy.damping - kinetic_change - (W_end - W_n);
+  state = std::move(end);
+  return report;
+}
+
+void QuasiNewtonNewmark::add_step(EnergyAccount& account, const DynamicState& state, const QuasiNewtonStepReport& report) {
+  account.kinetic = 0.5 * state.v.dot(body_.M * state.v);
+  account.elastic = elastic_energy(state.u);
+  account.external_work += report.energy.external_work;
+  account.damping += report.energy.damping;
+  account.numerical += report.energy.numerical;
+}
+
+} // namespace kerf
