@@ -1,0 +1,111 @@
+// Chapter 8's step (quasi_newton_newmark.hpp) against chapter 7's: its energy is chapter 7's to
+// round-off, its grown factor solves as a factorisation of the whole matrix does, solved tightly it
+// is chapter 7's Newton step, and at its default iterations it stays near it.
+#include "cantilever.hpp"
+
+#include "kerf/solve/growing_cholesky.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <doctest/doctest.h>
+#include <random>
+
+using cantilever::Bar;
+
+TEST_CASE("CorotatedPieces: W and f_int are the cut model's corotated energy and force") {
+  const Bar bar(0.015);
+  const kerf::CorotatedPieces pieces(bar.body.model, cantilever::tissue, kerf::RotationMethod::automatic);
+  // A state with large rotations: the bar bent through 60 degrees about y, plus noise, the cut
+  // open (enrichments non-zero).
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> noise(-1e-3, 1e-3);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * bar.body.model.num_dof_nodes());
+  for (Eigen::Index i = 0; i < bar.body.model.num_dof_nodes(); ++i) {
+    const Eigen::Vector3d X = i < bar.body.mesh.num_nodes() ? Eigen::Vector3d(bar.body.mesh.nodes.row(i).transpose()) : Eigen::Vector3d::Zero();
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(10.0 * X.x(), Eigen::Vector3d::UnitY()).toRotationMatrix();
+    u.segment<3>(3 * i) = (i < bar.body.mesh.num_nodes() ? Eigen::Vector3d(R * X - X) : Eigen::Vector3d::Zero()) +
+                          Eigen::Vector3d(noise(random), noise(random), noise(random));
+  }
+  Eigen::VectorXd f_model, f_pieces, unused = Eigen::VectorXd::Zero(u.size());
+  const double W_model = bar.body.model.assemble_with_energy(u, kerf::RotationMethod::automatic, kerf::CorotationalTangent::warped,
+                                                             f_model, nullptr, nullptr);
+  std::vector<Eigen::Matrix3d> rotations;
+  const double W_pieces = pieces.energy(u, f_pieces, rotations);
+  CHECK(W_model > 1e-4);
+  CHECK(std::abs(W_pieces - W_model) <= 1e-11 * W_model);
+  CHECK((f_pieces - f_model).norm() <= 1e-11 * f_model.norm());
+  // W's gradient by central differences along a random direction.
+  Eigen::VectorXd d(u.size());
+  for (Eigen::Index i = 0; i < d.size(); ++i) d[i] = noise(random);
+  const double h = 1e-4;
+  Eigen::VectorXd f_unused;
+  const double slope = (pieces.energy(u + h * d, f_unused, rotations) - pieces.energy(u - h * d, f_unused, rotations)) / (2 * h);
+  CHECK(std::abs(slope - f_pieces.dot(d)) <= 1e-6 * std::abs(slope));
+  // The warped product is the model's assembled R K R^T.
+  kerf::SparseAssembler assembler(bar.body.model.assembly_slots(), kerf::make_dof_map(bar.body.model.num_dof_nodes(), {}));
+  bar.body.model.assemble(u, kerf::RotationMethod::automatic, kerf::CorotationalTangent::warped, f_model, &assembler, &unused);
+  pieces.energy(u, f_pieces, rotations);
+  Eigen::VectorXd K_d;
+  const double half_dKd = pieces.warped_product(rotations, d, K_d);
+  const Eigen::VectorXd K_d_model = assembler.matrix() * d;
+  CHECK((K_d - K_d_model).norm() <= 1e-11 * K_d_model.norm());
+  CHECK(std::abs(half_dKd - 0.5 * d.dot(K_d_model)) <= 1e-11 * half_dKd);
+}
+
+TEST_CASE("GrowingCholesky: the grown factor solves as the whole matrix's factorisation does") {
+  const Bar bar(0.015);
+  const kerf::CorotatedPieces pieces(bar.body.model, cantilever::tissue, kerf::RotationMethod::automatic);
+  kerf::QuasiNewtonNewmark newmark(cantilever::dt, cantilever::tissue, {});
+  newmark.set_body(bar.quasi_newton_body(pieces, 2.0, 0.01));
+  const Eigen::SparseMatrix<double> A = newmark.step_matrix();
+  const Eigen::Index standard = std::count_if(newmark.free_nodes().begin(), newmark.free_nodes().end(),
+                                              [&](int v) { return v < bar.body.mesh.num_nodes(); });
+  REQUIRE(A.rows() - standard > 10); // the cut's enrichments are the trailing rows
+  Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 3);
+  Eigen::MatrixXd X = B;
+  newmark.solve_step_matrix(X);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> whole(A);
+  const Eigen::MatrixXd X_whole = whole.solve(B);
+  CHECK((X - X_whole).norm() <= 1e-11 * X_whole.norm());
+  CHECK((A * X - B).norm() <= 1e-11 * B.norm());
+  // The standard block is the uncut bar's: a model with the cut grown further keeps the factor.
+  const Bar deeper(0.005);
+  const kerf::CorotatedPieces deeper_pieces(deeper.body.model, cantilever::tissue, kerf::RotationMethod::automatic);
+  newmark.set_body(deeper.quasi_newton_body(deeper_pieces, 2.0, 0.01));
+  CHECK(newmark.factorisations() == 1);
+  CHECK(newmark.step_matrix().rows() > A.rows());
+  const Eigen::SparseMatrix<double> A_deeper = newmark.step_matrix();
+  Eigen::MatrixXd B2 = Eigen::MatrixXd::Random(A_deeper.rows(), 3), X2 = B2;
+  newmark.solve_step_matrix(X2);
+  CHECK((A_deeper * X2 - B2).norm() <= 1e-11 * B2.norm());
+}
+
+TEST_CASE("Chapter 8's step solved tightly is chapter 7's Newton step") {
+  const Bar bar(0.015);
+  constexpr int steps = 30;
+  const std::vector<Eigen::VectorXd> newton = cantilever::newton_run(bar, 2.0, 0.01, steps);
+  kerf::QuasiNewtonNewmarkSettings tight;
+  tight.tolerance = 1e-10;
+  const std::vector<Eigen::VectorXd> quasi_newton = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, tight);
+  const Eigen::Index nodes = bar.body.mesh.num_nodes();
+  const double largest = cantilever::largest_displacement(newton, nodes);
+  const double difference = cantilever::largest_difference(newton, quasi_newton, nodes);
+  MESSAGE("largest displacement " << largest << " m; tight quasi-Newton against Newton: " << difference / largest);
+  CHECK(largest > 0.005);
+  CHECK(difference <= 1e-7 * largest);
+}
+
+TEST_CASE("Chapter 8's step at its default iterations stays within 2 % of chapter 7's Newton step") {
+  const Bar bar(0.015);
+  constexpr int steps = 60;
+  const std::vector<Eigen::VectorXd> newton = cantilever::newton_run(bar, 2.0, 0.01, steps);
+  const Eigen::Index nodes = bar.body.mesh.num_nodes();
+  const double largest = cantilever::largest_displacement(newton, nodes);
+  for (int iterations : {2, 3, 4, 5, 10}) {
+    kerf::QuasiNewtonNewmarkSettings settings;
+    settings.iterations = iterations;
+    const std::vector<Eigen::VectorXd> quasi_newton = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, settings);
+    MESSAGE(iterations << " iterations: " << cantilever::largest_difference(newton, quasi_newton, nodes) / largest);
+  }
+  const std::vector<Eigen::VectorXd> quasi_newton = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, {});
+  CHECK(cantilever::largest_difference(newton, quasi_newton, nodes) <= 0.02 * largest);
+}
