@@ -68,26 +68,30 @@ CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial
   }
 }
 
+Eigen::Matrix3d CorotatedPieces::gradient_sum(const Eigen::VectorXd& q, std::size_t p) const {
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) sum.noalias() += q.segment<3>(3 * slot_node_[s]) * slot_gradient_[s].transpose();
+  return sum;
+}
+
+double CorotatedPieces::add_piece_force(std::size_t p, const Eigen::Matrix3d& R, const Eigen::Matrix3d& strain, Eigen::VectorXd& force) const {
+  const double trace = strain.trace();
+  // V R sigma, sigma = 2 mu strain + lambda tr(strain) I: (8.3) written with the symmetric strain.
+  const Eigen::Matrix3d VP = volume_[p] * R * (2.0 * mu_ * strain + lambda_ * trace * Eigen::Matrix3d::Identity());
+  for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) force.segment<3>(3 * slot_node_[s]) += VP * slot_gradient_[s];
+  return volume_[p] * (mu_ * strain.squaredNorm() + 0.5 * lambda_ * trace * trace);
+}
+
 double CorotatedPieces::energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int, std::vector<Eigen::Matrix3d>& rotations) const {
   f_int.setZero(u.size());
-  const bool warm = rotations.size() == volume_.size();
-  if (!warm) rotations.assign(volume_.size(), Eigen::Matrix3d::Identity());
+  if (rotations.size() != volume_.size()) rotations.assign(volume_.size(), Eigen::Matrix3d::Identity());
   double W = 0.0;
   for (std::size_t p = 0; p < volume_.size(); ++p) {
-    // (8.1): F = I + sum_s q_s g_s^T.
-    Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
-    for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s)
-      F.noalias() += u.segment<3>(3 * slot_node_[s]) * slot_gradient_[s].transpose();
-    const Eigen::Matrix3d R = warm_rotation(F, rotations[p], rotation_);
-    rotations[p] = R;
+    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + gradient_sum(u, p); // (8.1)
+    rotations[p] = warm_rotation(F, rotations[p], rotation_);
     // (8.2), (8.3): the strain R^T F - I, symmetrised against round-off in R.
-    const Eigen::Matrix3d RtF = R.transpose() * F;
-    const Eigen::Matrix3d strain = 0.5 * (RtF + RtF.transpose()) - Eigen::Matrix3d::Identity();
-    const double trace = strain.trace();
-    W += volume_[p] * (mu_ * strain.squaredNorm() + 0.5 * lambda_ * trace * trace);
-    // P = R (2 mu strain + lambda tr I): (8.3) written with the symmetric strain.
-    const Eigen::Matrix3d VP = volume_[p] * R * (2.0 * mu_ * strain + lambda_ * trace * Eigen::Matrix3d::Identity());
-    for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) f_int.segment<3>(3 * slot_node_[s]) += VP * slot_gradient_[s];
+    const Eigen::Matrix3d RtF = rotations[p].transpose() * F;
+    W += add_piece_force(p, rotations[p], 0.5 * (RtF + RtF.transpose()) - Eigen::Matrix3d::Identity(), f_int);
   }
   return W;
 }
@@ -99,16 +103,9 @@ double CorotatedPieces::warped_product(const std::vector<Eigen::Matrix3d>& rotat
   K_d.setZero(d.size());
   double half_dKd = 0.0;
   for (std::size_t p = 0; p < volume_.size(); ++p) {
-    Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
-    for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s)
-      D.noalias() += d.segment<3>(3 * slot_node_[s]) * slot_gradient_[s].transpose();
-    const Eigen::Matrix3d& R = rotations[p];
-    const Eigen::Matrix3d RtD = R.transpose() * D;
-    const Eigen::Matrix3d strain = 0.5 * (RtD + RtD.transpose());
-    const double trace = strain.trace();
-    half_dKd += volume_[p] * (mu_ * strain.squaredNorm() + 0.5 * lambda_ * trace * trace);
-    const Eigen::Matrix3d VP = volume_[p] * R * (2.0 * mu_ * strain + lambda_ * trace * Eigen::Matrix3d::Identity());
-    for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) K_d.segment<3>(3 * slot_node_[s]) += VP * slot_gradient_[s];
+    // The linear strain sym(R^T D) of the displacement d seen in the piece's turned frame.
+    const Eigen::Matrix3d RtD = rotations[p].transpose() * gradient_sum(d, p);
+    half_dKd += add_piece_force(p, rotations[p], 0.5 * (RtD + RtD.transpose()), K_d);
   }
   return half_dKd;
 }

@@ -11,20 +11,23 @@ namespace {
 
 double inner(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) { return x.cwiseProduct(y).sum(); }
 
-// The scalar part m_ij of a mass whose 3x3 blocks are m_ij I_3.
+// The scalar part m_ij of a mass whose 3x3 blocks are m_ij I_3: its x entries, each checked
+// against the y and z entries of its block (the others must be zero).
 Eigen::SparseMatrix<double> scalar_mass(const Eigen::SparseMatrix<double>& M) {
-  std::vector<Eigen::Triplet<double>> scalar, expanded;
+  std::vector<Eigen::Triplet<double>> scalar;
   for (Eigen::Index j = 0; j < M.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(M, j); it; ++it)
-      if (it.row() % 3 == 0 && it.col() % 3 == 0) {
+      if (it.row() % 3 == 0 && it.col() % 3 == 0)
         scalar.emplace_back(static_cast<int>(it.row() / 3), static_cast<int>(it.col() / 3), it.value());
-        for (int c = 0; c < 3; ++c) expanded.emplace_back(static_cast<int>(it.row() + c), static_cast<int>(it.col() + c), it.value());
-      }
-  Eigen::SparseMatrix<double> M_s(M.rows() / 3, M.cols() / 3), M_3(M.rows(), M.cols());
+  Eigen::SparseMatrix<double> M_s(M.rows() / 3, M.cols() / 3);
   M_s.setFromTriplets(scalar.begin(), scalar.end());
-  M_3.setFromTriplets(expanded.begin(), expanded.end());
-  if ((M_3 - M).norm() > 1e-12 * M.norm())
-    throw std::invalid_argument("QuasiNewtonNewmark: the mass is not the same in x, y and z (m_ij I_3 per node pair)");
+  const double tolerance = 1e-12 * M_s.norm();
+  for (Eigen::Index j = 0; j < M.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, j); it; ++it) {
+      const double expected = it.row() % 3 == it.col() % 3 ? M_s.coeff(it.row() / 3, it.col() / 3) : 0.0;
+      if (std::abs(it.value() - expected) > tolerance)
+        throw std::invalid_argument("QuasiNewtonNewmark: the mass is not the same in x, y and z (m_ij I_3 per node pair)");
+    }
   return M_s;
 }
 
@@ -79,13 +82,15 @@ void QuasiNewtonNewmark::set_body(QuasiNewtonBody body) {
   c_D_ = body_.rayleigh_beta * gamma / (beta * dt_);
   const double mu = material_.mu();
   const double kappa = mu * (settings_.stiffness_in_mu > 0.0 ? settings_.stiffness_in_mu : 2.0 + material_.lambda() / mu);
-  const Eigen::SparseMatrix<double> A = c_M_ * scalar_mass(body_.M) + (1.0 + c_D_) * kappa * body_.pieces->laplacian();
-  free_position_.assign(static_cast<std::size_t>(nodes), -1);
-  for (std::size_t k = 0; k < free_nodes_.size(); ++k) free_position_[static_cast<std::size_t>(free_nodes_[k])] = static_cast<int>(k);
+  const Eigen::SparseMatrix<double> M_s = scalar_mass(body_.M);
+  const Eigen::SparseMatrix<double> A = c_M_ * M_s + (1.0 + c_D_) * kappa * body_.pieces->laplacian();
+  std::vector<int> free_position(static_cast<std::size_t>(nodes), -1); // each DOF node's row in A, -1 if held
+  for (std::size_t k = 0; k < free_nodes_.size(); ++k) free_position[static_cast<std::size_t>(free_nodes_[k])] = static_cast<int>(k);
   free_mask_.setZero(3 * nodes);
   for (int node : free_nodes_) free_mask_.segment<3>(3 * node).setOnes();
   const auto n = static_cast<Eigen::Index>(free_nodes_.size());
-  A_free_ = restrict_to(A, free_position_, n);
+  A_free_ = restrict_to(A, free_position, n);
+  mass_free_ = restrict_to(M_s, free_position, n);
   const Eigen::Index k = n - num_standard;
   const Eigen::SparseMatrix<double> A_ss = A_free_.topLeftCorner(num_standard, num_standard);
   // The standard block is the uncut body's: keep its factor (growing_cholesky.hpp).
@@ -127,9 +132,7 @@ DynamicState QuasiNewtonNewmark::initial_state(const Eigen::VectorXd& u0, const 
   body_.pieces->warped_product(last_rotations_, v0, Kv);
   const Eigen::VectorXd r = body_.load - last_f_int_ - body_.rayleigh_alpha * (body_.M * v0) - body_.rayleigh_beta * Kv;
   // M_ff a_f = r_f with the scalar mass of the free nodes.
-  const Eigen::SparseMatrix<double> M_ff =
-      restrict_to(scalar_mass(body_.M), free_position_, static_cast<Eigen::Index>(free_nodes_.size()));
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass(M_ff);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass(mass_free_);
   if (mass.info() != Eigen::Success) throw std::runtime_error("QuasiNewtonNewmark: the free nodes' mass is not positive definite");
   const Eigen::MatrixXd a_f = mass.solve(gather(r));
   scatter_add(a_f, state.a);

@@ -9,7 +9,6 @@ GrowingCholesky::GrowingCholesky(const Eigen::SparseMatrix<double>& A_ss) : lead
   if (factor_.info() != Eigen::Success)
     throw std::runtime_error("GrowingCholesky: the leading block is not positive definite");
   W_.resize(leading_.rows(), 0);
-  Wt_.resize(0, leading_.rows());
   S_factor_.resize(0, 0);
 }
 
@@ -20,8 +19,7 @@ void GrowingCholesky::set_trailing(const Eigen::SparseMatrix<double>& A_se, cons
   W_ = factor_.permutationP() * A_se;
   factor_.matrixL().solveInPlace(W_);
   W_.prune(0.0);
-  Wt_ = W_.transpose();
-  const Eigen::MatrixXd S = Eigen::MatrixXd(A_ee) - Eigen::MatrixXd(Wt_ * W_);
+  const Eigen::MatrixXd S = Eigen::MatrixXd(A_ee) - Eigen::MatrixXd(W_.transpose() * W_);
   Eigen::LLT<Eigen::MatrixXd> schur(S);
   if (schur.info() != Eigen::Success)
     throw std::runtime_error("GrowingCholesky: the trailing rows' Schur complement is not positive definite");
@@ -35,7 +33,7 @@ void GrowingCholesky::solve(Eigen::MatrixXd& B) const {
   Eigen::MatrixXd z = factor_.permutationP() * B.topRows(n_s);
   factor_.matrixL().solveInPlace(z);
   if (k > 0) {
-    Eigen::MatrixXd z_e = B.bottomRows(k) - Wt_ * z;
+    Eigen::MatrixXd z_e = B.bottomRows(k) - W_.transpose() * z;
     S_factor_.triangularView<Eigen::Lower>().solveInPlace(z_e);
     // Backward: x_e = L_S^{-T} z_e, x_s = P^T L^{-T} (z_s - W x_e).
     S_factor_.triangularView<Eigen::Lower>().transpose().solveInPlace(z_e);

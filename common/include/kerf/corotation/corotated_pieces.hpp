@@ -55,6 +55,12 @@ public:
   Eigen::SparseMatrix<double> laplacian() const;
 
 private:
+  // sum_s q_s g_s^T over piece p's slots: (8.1) without the identity.
+  Eigen::Matrix3d gradient_sum(const Eigen::VectorXd& q, std::size_t p) const;
+  // Adds the force V R sigma(strain) g_s of piece p (turned by R) to its slots, and returns the
+  // piece's energy V psi of the symmetric strain.
+  double add_piece_force(std::size_t p, const Eigen::Matrix3d& R, const Eigen::Matrix3d& strain, Eigen::VectorXd& force) const;
+
   Eigen::Index num_dof_nodes_ = 0;
   double mu_ = 0.0, lambda_ = 0.0;
   RotationMethod rotation_;

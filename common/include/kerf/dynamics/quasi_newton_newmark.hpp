@@ -117,9 +117,9 @@ private:
   QuasiNewtonNewmarkSettings settings_;
   QuasiNewtonBody body_;
   std::vector<int> free_nodes_;
-  std::vector<int> free_position_; // per DOF node: its row in A, or -1 (held)
   Eigen::VectorXd free_mask_;      // 1 on the free DOFs, 0 on the held ones
   Eigen::SparseMatrix<double> A_free_;
+  Eigen::SparseMatrix<double> mass_free_; // M_s on the free nodes (the initial acceleration's)
   std::unique_ptr<GrowingCholesky> factor_;
   int factorisations_ = 0;
   double c_M_ = 0.0, c_D_ = 0.0;

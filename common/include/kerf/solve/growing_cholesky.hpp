@@ -43,7 +43,6 @@ private:
   Eigen::SparseMatrix<double> leading_;
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> factor_; // P A_ss P^T = L L^T
   Eigen::SparseMatrix<double> W_;                            // L^{-1} P A_se, n_s x k
-  Eigen::SparseMatrix<double> Wt_;                           // W^T, for the products of the solve
   Eigen::MatrixXd S_factor_;                                 // L_S, lower triangular, k x k
 };
 
