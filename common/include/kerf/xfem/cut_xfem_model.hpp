@@ -144,7 +144,10 @@ public:
   /// The body-force load sum_p T_p^T int_p N^T rho g (3 num_dof_nodes()).
   Eigen::VectorXd gravity_load(double density, const Eigen::Vector3d& g) const;
   /// The displacement at x (m) in tet t, on the piece that holds x (one above the cut, if x lies
-  /// on the cut); NaN if x is not in tet t.
+  /// on the cut); NaN if t is integrated by pieces and none holds x. A tet integrated whole is
+  /// not asked whether it holds x: its field is extended linearly beyond it (piece_at), which is
+  /// what embedding a visual surface just outside the mesh wants; find the tet first
+  /// (PointLocator) for a point anywhere in the body.
   Eigen::Vector3d displacement_at(const Eigen::VectorXd& u, Eigen::Index t, const Eigen::Vector3d& x) const;
   /// Its gradient du_i/dx_j (3x3) at x, on the same piece: the phantom element's, plus the
   /// branch functions' where they act (the interaction integral and the energy norm read it);
@@ -186,8 +189,8 @@ public:
   bool has_branch_functions(Eigen::Index t) const { return branch_.contains(t); }
   /// The nodal values of the phantom element of piece p of tet t: row a is u_a + a_k.
   Eigen::MatrixX3d phantom_displacements(const Eigen::VectorXd& u, Eigen::Index t, int p) const;
-  /// The piece of tet t that holds x (one above the cut if x lies on it; 0 for a tet integrated
-  /// whole), -1 if x is not in the tet.
+  /// The piece of tet t that holds x (one above the cut if x lies on it), -1 if t is integrated
+  /// by pieces and none holds x; 0 for a tet integrated whole, wherever x is (not checked).
   int piece_at(Eigen::Index t, const Eigen::Vector3d& x) const;
   /// The n shape functions of tet t at the point x (m).
   Eigen::VectorXd shape_values(Eigen::Index t, const Eigen::Vector3d& x) const;
