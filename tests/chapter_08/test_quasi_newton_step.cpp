@@ -4,11 +4,13 @@
 // the cut frees falls at g.
 #include "cantilever.hpp"
 
+#include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/solve/growing_cholesky.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <doctest/doctest.h>
 #include <random>
+#include <string>
 
 using cantilever::Bar;
 
@@ -140,4 +142,29 @@ TEST_CASE("A piece the cut frees falls at g") {
   // translation exactly, but by L-BFGS's pairs too, whose inner products span the whole body:
   // the held part's unconverged bending leaks in, a few micrometres.
   CHECK(default_miss <= 1e-5 * fallen);
+}
+
+TEST_CASE("Chapter 8's step refuses what its one scalar matrix cannot hold") {
+  const Bar bar(0.015);
+  const kerf::CorotatedPieces pieces(bar.body.model, cantilever::tissue, kerf::RotationMethod::automatic);
+  kerf::QuasiNewtonNewmark newmark(cantilever::dt, cantilever::tissue, {});
+  // A node held in z only: x and y would need a matrix of their own.
+  kerf::QuasiNewtonBody partly_held = bar.quasi_newton_body(pieces, 2.0, 0.01);
+  const Eigen::Index free_node = bar.body.mesh.num_nodes() - 1; // at x = 10 cm, free
+  partly_held.dofs.free_index[static_cast<std::size_t>(3 * free_node + 2)] = -1;
+  CHECK_THROWS_WITH_AS(newmark.set_body(partly_held),
+                       ("QuasiNewtonNewmark: DOF node " + std::to_string(free_node) +
+                        " is held in some components only; chapter 8's matrix holds whole nodes").c_str(),
+                       std::invalid_argument);
+  // A mass heavier in x than in y and z.
+  kerf::QuasiNewtonBody anisotropic = bar.quasi_newton_body(pieces, 2.0, 0.01);
+  anisotropic.M.coeffRef(3, 3) *= 2.0;
+  CHECK_THROWS_AS(newmark.set_body(anisotropic), std::invalid_argument);
+  // A Tet10's gradient varies over a piece.
+  const cut_body::CutBody tet10(kerf::tet10_from_tet4(cut_body::unit_tet()), {}, cantilever::tissue);
+  CHECK_THROWS_AS(kerf::CorotatedPieces(tet10.model, cantilever::tissue, kerf::RotationMethod::automatic), std::invalid_argument);
+  CHECK_THROWS_AS(kerf::QuasiNewtonNewmark(0.0, cantilever::tissue, {}), std::invalid_argument);
+  kerf::QuasiNewtonNewmarkSettings explicit_step;
+  explicit_step.newmark.beta = 0.0;
+  CHECK_THROWS_AS(kerf::QuasiNewtonNewmark(cantilever::dt, cantilever::tissue, explicit_step), std::invalid_argument);
 }
