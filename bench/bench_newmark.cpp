@@ -236,17 +236,11 @@ int main(int argc, char** argv) {
 
   std::ostringstream report;
   report << "# Chapter 6 benchmark: the Newmark step of the corotational cut soft block\n\n"
-         << "- CPU: " << kerf_measure::cpu_model() << "\n- date: " << kerf_measure::now_text()
-         << "\n- threads: OPENBLAS_NUM_THREADS=" << kerf_measure::environment("OPENBLAS_NUM_THREADS")
-         << ", OMP_NUM_THREADS=" << kerf_measure::environment("OMP_NUM_THREADS") << "\n- " << steps
+         << kerf_measure::machine_lines() << "- " << steps
          << " steps of 10 ms, rotations frozen per step; processor time in ms per step (one run each); error: |u - u_ref| / |u_ref| of "
             "the field after the last step, u_ref with CHOLMOD\n\n"
          << table.str();
   std::cout << report.str();
-  if (!options->out.empty()) {
-    std::ofstream(options->out) << report.str();
-    std::filesystem::path csv_path = options->out;
-    std::ofstream(csv_path.replace_extension(".csv")) << csv.str();
-  }
+  kerf_measure::write_report(options->out, report.str(), csv.str());
   return 0;
 }

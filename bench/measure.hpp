@@ -74,6 +74,21 @@ inline std::string environment(const char* name) {
   return value ? value : "unset";
 }
 
+/// A report's lines about the machine and its threads: the CPU, the date, and the BLAS and OpenMP
+/// thread counts (a second thread would change the numbers).
+inline std::string machine_lines() {
+  return "- CPU: " + cpu_model() + "\n- date: " + now_text() + "\n- threads: OPENBLAS_NUM_THREADS=" +
+         environment("OPENBLAS_NUM_THREADS") + ", OMP_NUM_THREADS=" + environment("OMP_NUM_THREADS") + "\n";
+}
+
+/// Writes a report to `out` (FILE.md) and its rows to FILE.csv beside it; nothing if `out` is empty.
+inline void write_report(const std::filesystem::path& out, const std::string& report, const std::string& csv) {
+  if (out.empty()) return;
+  std::ofstream(out) << report;
+  std::filesystem::path csv_path = out;
+  std::ofstream(csv_path.replace_extension(".csv")) << csv;
+}
+
 /// What every benchmark and study takes on its command line.
 struct RunOptions {
   bool quick = false;        ///< --quick: tiny sizes, every code path, a few seconds

@@ -52,6 +52,19 @@ TEST_CASE("CorotatedPieces: W and f_int are the cut model's corotated energy and
   const Eigen::VectorXd K_d_model = assembler.matrix() * d;
   CHECK((K_d - K_d_model).norm() <= 1e-11 * K_d_model.norm());
   CHECK(std::abs(half_dKd - 0.5 * d.dot(K_d_model)) <= 1e-11 * half_dKd);
+  // The step's one pass: W(u) + c/2 d^T K_R d and f_int(u) + c K_R d for d = u - u_ref, with K_R
+  // at other rotations (those of u_ref).
+  const Eigen::VectorXd u_ref = u - d;
+  std::vector<Eigen::Matrix3d> turned;
+  Eigen::VectorXd f_ref, K_d_turned;
+  pieces.energy(u_ref, f_ref, turned);
+  const double half_turned = pieces.warped_product(turned, d, K_d_turned);
+  Eigen::VectorXd force;
+  std::vector<Eigen::Matrix3d> step_rotations;
+  const kerf::CorotatedPieces::StepTerms terms = pieces.step_terms(u, pieces.gradient_sums(u_ref), 3.0, turned, force, step_rotations);
+  CHECK(std::abs(terms.W - W_model) <= 1e-11 * W_model);
+  CHECK(std::abs(terms.half_dKd - half_turned) <= 1e-11 * half_turned);
+  CHECK((force - f_model - 3.0 * K_d_turned).norm() <= 1e-11 * f_model.norm());
 }
 
 TEST_CASE("GrowingCholesky: the grown factor solves as the whole matrix's factorisation does") {

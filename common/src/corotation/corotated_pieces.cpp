@@ -3,8 +3,6 @@
 #include "kerf/fem/tet_shape_functions.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Geometry>
 #include <stdexcept>
 
 namespace kerf {
@@ -16,27 +14,43 @@ namespace {
 //
 //   (tr(A) I - sym(A)) theta = (A_32 - A_23, A_13 - A_31, A_21 - A_12),
 //
-// a 3x3 solve per iteration, converging quadratically: started from the rotation the piece had
-// at the last evaluation (a step moves it little) it takes two or three, where Higham's
-// iteration from F needs four to six inverses however close the last rotation was (its speed
-// depends on the stretch, not on the turn). An inverted F (det F <= 0), a matrix that is not
-// positive definite (a turn of over 90 degrees from R0) or no convergence take `method`'s.
-Eigen::Matrix3d warm_rotation(const Eigen::Matrix3d& F, const Eigen::Matrix3d& R0, RotationMethod method) {
+// a 3x3 solve per iteration (by cofactors), converging quadratically; R turns by the Cayley
+// transform of theta, which is exp([theta]) to second order and exactly a rotation. Started from
+// the rotation the piece had at the last evaluation (a step moves it little) it takes one or two
+// iterations, where Higham's iteration from F needs four to six inverses however close the last
+// rotation was (its speed depends on the stretch, not on the turn). It stops after a correction
+// smaller than `tolerance` (rad): the rotation is then within about its square of the polar one
+// (1e-7: to round-off). An inverted F (det F <= 0), a matrix that is
+// not positive definite (a turn of over 90 degrees from R0) or no convergence take `method`'s.
+Eigen::Matrix3d warm_rotation(const Eigen::Matrix3d& F, const Eigen::Matrix3d& R0, RotationMethod method, double tolerance) {
   if (F.determinant() <= 0.0) return element_rotation(F, method).R;
   Eigen::Matrix3d R = R0;
   for (int iteration = 0; iteration < 8; ++iteration) {
     const Eigen::Matrix3d A = R.transpose() * F;
     const Eigen::Vector3d skew(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));
     const Eigen::Matrix3d H = A.trace() * Eigen::Matrix3d::Identity() - 0.5 * (A + A.transpose());
-    const Eigen::LLT<Eigen::Matrix3d> llt(H);
-    if (llt.info() != Eigen::Success) break;
-    const Eigen::Vector3d theta = llt.solve(skew);
-    const double angle = theta.norm();
-    if (angle > 0.0) R = R * Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix();
-    if (angle < 1e-12) return R;
+    // The adjugate of the symmetric H (its cofactors), and det H.
+    Eigen::Matrix3d H_adjugate;
+    H_adjugate(0, 0) = H(1, 1) * H(2, 2) - H(1, 2) * H(1, 2);
+    H_adjugate(1, 1) = H(0, 0) * H(2, 2) - H(0, 2) * H(0, 2);
+    H_adjugate(2, 2) = H(0, 0) * H(1, 1) - H(0, 1) * H(0, 1);
+    H_adjugate(0, 1) = H_adjugate(1, 0) = H(0, 2) * H(1, 2) - H(0, 1) * H(2, 2);
+    H_adjugate(0, 2) = H_adjugate(2, 0) = H(0, 1) * H(1, 2) - H(0, 2) * H(1, 1);
+    H_adjugate(1, 2) = H_adjugate(2, 1) = H(0, 1) * H(0, 2) - H(0, 0) * H(1, 2);
+    const double det_H = H.row(0).dot(H_adjugate.col(0));
+    if (!(det_H > 0.0 && H(0, 0) > 0.0)) break;
+    const Eigen::Vector3d w = (0.5 / det_H) * (H_adjugate * skew); // theta / 2
+    // Cayley: (I - [w])^{-1} (I + [w]) = I + 2 ([w] + [w]^2) / (1 + |w|^2).
+    Eigen::Matrix3d W;
+    W << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+    R = R * (Eigen::Matrix3d::Identity() + (2.0 / (1.0 + w.squaredNorm())) * (W + W * W));
+    if (4.0 * w.squaredNorm() < tolerance * tolerance) return R;
   }
   return element_rotation(F, method).R;
 }
+
+// The tolerance of energy() and warped_product()'s rotations: the polar one to round-off.
+constexpr double exact_turn = 1e-7;
 
 } // namespace
 
@@ -74,13 +88,21 @@ Eigen::Matrix3d CorotatedPieces::gradient_sum(const Eigen::VectorXd& q, std::siz
   return sum;
 }
 
-double CorotatedPieces::add_piece_force(std::size_t p, const Eigen::Matrix3d& R, const Eigen::Matrix3d& strain, Eigen::VectorXd& force) const {
-  const double trace = strain.trace();
-  // V R sigma, sigma = 2 mu strain + lambda tr(strain) I: (8.3) written with the symmetric strain.
-  const Eigen::Matrix3d VP = volume_[p] * R * (2.0 * mu_ * strain + lambda_ * trace * Eigen::Matrix3d::Identity());
-  for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) force.segment<3>(3 * slot_node_[s]) += VP * slot_gradient_[s];
-  return volume_[p] * (mu_ * strain.squaredNorm() + 0.5 * lambda_ * trace * trace);
+Eigen::Matrix3d CorotatedPieces::stress(const Eigen::Matrix3d& strain) const {
+  return 2.0 * mu_ * strain + lambda_ * strain.trace() * Eigen::Matrix3d::Identity();
 }
+
+double CorotatedPieces::energy_density(const Eigen::Matrix3d& strain) const {
+  const double trace = strain.trace();
+  return mu_ * strain.squaredNorm() + 0.5 * lambda_ * trace * trace;
+}
+
+void CorotatedPieces::add_piece_force(std::size_t p, const Eigen::Matrix3d& VP, Eigen::VectorXd& force) const {
+  for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) force.segment<3>(3 * slot_node_[s]).noalias() += VP * slot_gradient_[s];
+}
+
+// The symmetric part of a 3x3 matrix.
+static Eigen::Matrix3d symmetric_part(const Eigen::Matrix3d& A) { return 0.5 * (A + A.transpose()); }
 
 double CorotatedPieces::energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int, std::vector<Eigen::Matrix3d>& rotations) const {
   f_int.setZero(u.size());
@@ -88,10 +110,11 @@ double CorotatedPieces::energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int,
   double W = 0.0;
   for (std::size_t p = 0; p < volume_.size(); ++p) {
     const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + gradient_sum(u, p); // (8.1)
-    rotations[p] = warm_rotation(F, rotations[p], rotation_);
-    // (8.2), (8.3): the strain R^T F - I, symmetrised against round-off in R.
-    const Eigen::Matrix3d RtF = rotations[p].transpose() * F;
-    W += add_piece_force(p, rotations[p], 0.5 * (RtF + RtF.transpose()) - Eigen::Matrix3d::Identity(), f_int);
+    const Eigen::Matrix3d& R = rotations[p] = warm_rotation(F, rotations[p], rotation_, exact_turn);
+    // (8.2), (8.3): the strain R^T F - I, symmetrised against round-off in R; P = R sigma.
+    const Eigen::Matrix3d strain = symmetric_part(R.transpose() * F) - Eigen::Matrix3d::Identity();
+    W += volume_[p] * energy_density(strain);
+    add_piece_force(p, volume_[p] * R * stress(strain), f_int);
   }
   return W;
 }
@@ -104,10 +127,41 @@ double CorotatedPieces::warped_product(const std::vector<Eigen::Matrix3d>& rotat
   double half_dKd = 0.0;
   for (std::size_t p = 0; p < volume_.size(); ++p) {
     // The linear strain sym(R^T D) of the displacement d seen in the piece's turned frame.
-    const Eigen::Matrix3d RtD = rotations[p].transpose() * gradient_sum(d, p);
-    half_dKd += add_piece_force(p, rotations[p], 0.5 * (RtD + RtD.transpose()), K_d);
+    const Eigen::Matrix3d strain = symmetric_part(rotations[p].transpose() * gradient_sum(d, p));
+    half_dKd += volume_[p] * energy_density(strain);
+    add_piece_force(p, volume_[p] * rotations[p] * stress(strain), K_d);
   }
   return half_dKd;
+}
+
+std::vector<Eigen::Matrix3d> CorotatedPieces::gradient_sums(const Eigen::VectorXd& q) const {
+  std::vector<Eigen::Matrix3d> sums(volume_.size());
+  for (std::size_t p = 0; p < volume_.size(); ++p) sums[p] = gradient_sum(q, p);
+  return sums;
+}
+
+CorotatedPieces::StepTerms CorotatedPieces::step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums,
+                                                       double c, const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
+                                                       std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
+  if (reference_sums.size() != volume_.size() || turned.size() != volume_.size())
+    throw std::invalid_argument("CorotatedPieces::step_terms: expected one reference sum and one rotation per piece");
+  force.setZero(u.size());
+  if (rotations.size() != volume_.size()) rotations.assign(volume_.size(), Eigen::Matrix3d::Identity());
+  StepTerms terms;
+  for (std::size_t p = 0; p < volume_.size(); ++p) {
+    // One gather serves both terms: F - I for the elastic one, F - I - (sum of u_ref) = D for K_R d.
+    const Eigen::Matrix3d grad_u = gradient_sum(u, p);
+    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
+    const Eigen::Matrix3d& R = rotations[p] = warm_rotation(F, rotations[p], rotation_, turn_tolerance);
+    const Eigen::Matrix3d strain = symmetric_part(R.transpose() * F) - Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d& Q = turned[p];
+    const Eigen::Matrix3d rate_strain = symmetric_part(Q.transpose() * (grad_u - reference_sums[p]));
+    terms.W += volume_[p] * energy_density(strain);
+    terms.half_dKd += volume_[p] * energy_density(rate_strain);
+    // One scatter: V (R sigma(strain) + c Q sigma(rate_strain)) g_s.
+    add_piece_force(p, volume_[p] * (R * stress(strain) + c * (Q * stress(rate_strain))), force);
+  }
+  return terms;
 }
 
 Eigen::SparseMatrix<double> CorotatedPieces::laplacian() const {

@@ -1,6 +1,7 @@
 #include "kerf/dynamics/quasi_newton_newmark.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -10,6 +11,10 @@ namespace kerf {
 namespace {
 
 double inner(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) { return x.cwiseProduct(y).sum(); }
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // The scalar part m_ij of a mass whose 3x3 blocks are m_ij I_3: its x entries, each checked
 // against the y and z entries of its block (the others must be zero).
@@ -103,15 +108,16 @@ void QuasiNewtonNewmark::set_body(QuasiNewtonBody body) {
   factor_->set_trailing(A_free_.topRightCorner(num_standard, k), A_free_.bottomRightCorner(k, k));
 }
 
-void QuasiNewtonNewmark::evaluate(const Eigen::VectorXd& u) {
-  if (last_valid_ && last_u_.size() == u.size() && last_u_ == u) return;
-  last_W_ = body_.pieces->energy(u, last_f_int_, last_rotations_);
+void QuasiNewtonNewmark::remember(const Eigen::VectorXd& u, double W) {
   last_u_ = u;
+  last_W_ = W;
   last_valid_ = true;
 }
 
 double QuasiNewtonNewmark::elastic_energy(const Eigen::VectorXd& u) {
-  evaluate(u);
+  if (last_valid_ && last_u_.size() == u.size() && last_u_ == u) return last_W_;
+  Eigen::VectorXd f_int;
+  remember(u, body_.pieces->energy(u, f_int, last_rotations_));
   return last_W_;
 }
 
@@ -127,10 +133,10 @@ void QuasiNewtonNewmark::scatter_add(const Eigen::MatrixXd& free, Eigen::VectorX
 
 DynamicState QuasiNewtonNewmark::initial_state(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, double t0) {
   DynamicState state{t0, u0, v0, Eigen::VectorXd::Zero(u0.size())};
-  evaluate(u0);
-  Eigen::VectorXd Kv;
+  Eigen::VectorXd f_int, Kv;
+  remember(u0, body_.pieces->energy(u0, f_int, last_rotations_));
   body_.pieces->warped_product(last_rotations_, v0, Kv);
-  const Eigen::VectorXd r = body_.load - last_f_int_ - body_.rayleigh_alpha * (body_.M * v0) - body_.rayleigh_beta * Kv;
+  const Eigen::VectorXd r = body_.load - f_int - body_.rayleigh_alpha * (body_.M * v0) - body_.rayleigh_beta * Kv;
   // M_ff a_f = r_f with the scalar mass of the free nodes.
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass(mass_free_);
   if (mass.info() != Eigen::Success) throw std::runtime_error("QuasiNewtonNewmark: the free nodes' mass is not positive definite");
@@ -146,33 +152,44 @@ EnergyAccount QuasiNewtonNewmark::start_account(const DynamicState& state) {
   return account;
 }
 
-double QuasiNewtonNewmark::step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient) {
-  evaluate(u);
+void QuasiNewtonNewmark::solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report) const {
+  const auto start = std::chrono::steady_clock::now();
+  factor_->solve(B);
+  report.solve_seconds += seconds_since(start);
+}
+
+double QuasiNewtonNewmark::step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient, QuasiNewtonStepReport& report) {
+  const auto start = std::chrono::steady_clock::now();
+  const double turn_tolerance = settings_.tolerance > 0.0 ? 1e-7 : settings_.turn_tolerance;
+  const CorotatedPieces::StepTerms terms =
+      body_.pieces->step_terms(u, damping_reference_sums_, c_D_, rotations_n_, gradient, last_rotations_, turn_tolerance);
+  report.pieces_seconds += seconds_since(start);
+  remember(u, terms.W);
   const Eigen::VectorXd delta = u - u_tilde_;
   const Eigen::VectorXd M_delta = body_.M * delta;
-  Eigen::VectorXd K_delta;
-  const double half_dKd = body_.pieces->warped_product(rotations_n_, delta, K_delta);
-  gradient = c_M_ * M_delta + c_D_ * K_delta + last_f_int_ - b_;
-  return 0.5 * c_M_ * delta.dot(M_delta) + c_D_ * half_dKd + last_W_ - b_.dot(u);
+  gradient += c_M_ * M_delta - b_;
+  return 0.5 * c_M_ * delta.dot(M_delta) + c_D_ * terms.half_dKd + terms.W - b_.dot(u);
 }
 
 QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
   QuasiNewtonStepReport report;
-  evaluate(state.u);
+  const double W_n = elastic_energy(state.u); // found by the step before, at its end
   rotations_n_ = last_rotations_;
-  const double W_n = last_W_;
   // Newmark's predictors, zero on the held (still) DOFs.
   u_tilde_ = (state.u + dt_ * state.v + dt_ * dt_ * (0.5 - beta) * state.a).cwiseProduct(free_mask_);
   const Eigen::VectorXd v_tilde = (state.v + dt_ * (1.0 - gamma) * state.a).cwiseProduct(free_mask_);
-  Eigen::VectorXd K_v;
-  body_.pieces->warped_product(rotations_n_, v_tilde, K_v);
-  b_ = body_.load - body_.rayleigh_alpha * (body_.M * v_tilde) - body_.rayleigh_beta * K_v;
+  b_ = body_.load - body_.rayleigh_alpha * (body_.M * v_tilde);
+  // (8.4)'s stiffness damping, c_D/2 |u - u~|^2_{K_R} + beta_R (K_R v~) . u, is c_D/2 |u - u^|^2_{K_R}
+  // with u^ = u~ - (beta dt / gamma) v~ and a constant more: one warped term in the pieces' pass.
+  auto start = std::chrono::steady_clock::now();
+  damping_reference_sums_ = body_.pieces->gradient_sums(u_tilde_ - (beta * dt_ / gamma) * v_tilde);
+  report.pieces_seconds += seconds_since(start);
 
   // L-BFGS on (8.4) from the guess a_{n+1} = a_n, with A^{-1} (8.6) as the initial inverse Hessian.
   Eigen::VectorXd x = u_tilde_ + beta * dt_ * dt_ * state.a.cwiseProduct(free_mask_);
   Eigen::VectorXd gradient;
-  double E = step_energy(x, gradient);
+  double E = step_energy(x, gradient, report);
   Eigen::MatrixXd g = gather(gradient);
   const double scale = std::max(g.norm(), gather(body_.load).norm());
   if (!settings_.keep_history) pairs_.clear();
@@ -193,7 +210,7 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
       alphas[i] = inner(pairs[i].first, q) / inner(pairs[i].second, pairs[i].first);
       q -= alphas[i] * pairs[i].second;
     }
-    factor_->solve(q);
+    solve(q, report);
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const double b = inner(pairs[i].second, q) / inner(pairs[i].second, pairs[i].first);
       q += (alphas[i] - b) * pairs[i].first;
@@ -203,7 +220,7 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
     if (!(slope < 0.0)) { // not a descent direction: forget the pairs, take A^{-1}'s
       pairs.clear();
       d = -g;
-      factor_->solve(d);
+      solve(d, report);
       slope = inner(g, d);
     }
     // Backtracking on E_n: the full step unless it fails Armijo's test.
@@ -213,7 +230,7 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
     for (;;) {
       x_new = x;
       scatter_add(step_length * d, x_new);
-      E_new = step_energy(x_new, gradient_new);
+      E_new = step_energy(x_new, gradient_new, report);
       ++report.iterations;
       if (E_new <= E + 1e-4 * step_length * slope || step_length < 1.0 / 64.0) break;
       step_length *= 0.5;
@@ -237,7 +254,9 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   const Eigen::VectorXd du = end.u - state.u;
   const Eigen::VectorXd v_bar = 0.5 * (state.v + end.v);
   Eigen::VectorXd K_vbar;
+  start = std::chrono::steady_clock::now();
   body_.pieces->warped_product(rotations_n_, v_bar, K_vbar);
+  report.pieces_seconds += seconds_since(start);
   report.energy.external_work = du.dot(body_.load);
   report.energy.damping = du.dot(body_.rayleigh_alpha * (body_.M * v_bar) + body_.rayleigh_beta * K_vbar);
   const double kinetic_change = 0.5 * end.v.dot(body_.M * end.v) - 0.5 * state.v.dot(body_.M * state.v);

@@ -49,6 +49,24 @@ public:
   double energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int, std::vector<Eigen::Matrix3d>& rotations) const;
   /// K_R d with the warped stiffness at `rotations` (one per piece), and 1/2 d^T K_R d (J).
   double warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
+  /// sum_s q_s g_s^T of every piece: the pieces' displacement gradients for q.
+  std::vector<Eigen::Matrix3d> gradient_sums(const Eigen::VectorXd& q) const;
+  /// What chapter 8's step asks of the pieces at u, in one pass over them:
+  ///   W(u) + c/2 d^T K_R d  and its gradient  f_int(u) + c K_R d,   d = u - u_ref,
+  /// with the warped stiffness K_R at the rotations `turned` (one per piece) and u_ref given by its
+  /// gradient sums (`reference_sums`, gradient_sums(u_ref)). The gradient into `force`; the
+  /// rotations of u into `rotations` (warm, as energy()), each iterated until its last correction
+  /// is below `turn_tolerance` (rad), which leaves it about the square of that from the polar
+  /// rotation: 1e-7 is round-off; a step that stops after a few iterations anyway can take 1e-2
+  /// (a correction of 1e-3 rad, typical within a step, then ends after one Newton iteration,
+  /// within 1e-6 rad).
+  struct StepTerms {
+    double W = 0.0;        ///< W(u) (J)
+    double half_dKd = 0.0; ///< 1/2 d^T K_R d (J)
+  };
+  StepTerms step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums, double c,
+                       const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
+                       std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance = 1e-7) const;
   /// The scalar Laplacian on the DOF nodes, L_ij = sum_p V_p g_i . g_j (m), summed over the
   /// slots of every piece: each Cartesian component's block of the linear stiffness of a
   /// material with mu = 1, lambda = 0 and no cross terms (8.5).
@@ -57,9 +75,12 @@ public:
 private:
   // sum_s q_s g_s^T over piece p's slots: (8.1) without the identity.
   Eigen::Matrix3d gradient_sum(const Eigen::VectorXd& q, std::size_t p) const;
-  // Adds the force V R sigma(strain) g_s of piece p (turned by R) to its slots, and returns the
-  // piece's energy V psi of the symmetric strain.
-  double add_piece_force(std::size_t p, const Eigen::Matrix3d& R, const Eigen::Matrix3d& strain, Eigen::VectorXd& force) const;
+  // The linear stress sigma = 2 mu strain + lambda tr(strain) I of a symmetric strain, and its
+  // energy density psi = mu |strain|^2 + lambda/2 tr(strain)^2.
+  Eigen::Matrix3d stress(const Eigen::Matrix3d& strain) const;
+  double energy_density(const Eigen::Matrix3d& strain) const;
+  // Adds V P g_s of piece p to its slots.
+  void add_piece_force(std::size_t p, const Eigen::Matrix3d& VP, Eigen::VectorXd& force) const;
 
   Eigen::Index num_dof_nodes_ = 0;
   double mu_ = 0.0, lambda_ = 0.0;

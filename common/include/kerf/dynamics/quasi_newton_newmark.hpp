@@ -27,6 +27,10 @@ struct QuasiNewtonNewmarkSettings {
   double tolerance = 0.0;
   int max_iterations = 1000;
   int history = 5; ///< L-BFGS's pairs (s, y) kept
+  /// The pieces' rotations are iterated until a correction is below this (rad) when the step
+  /// runs a fixed number of iterations (CorotatedPieces::step_terms); with a tolerance, to
+  /// round-off.
+  double turn_tolerance = 1e-2;
   /// Whether a step starts with the pairs the step before ended with (the Hessian changes
   /// little in a step) instead of A^{-1} alone; a change of the body forgets them.
   bool keep_history = true;
@@ -40,6 +44,11 @@ struct QuasiNewtonStepReport {
   int iterations = 0;         ///< gradient evaluations after the first (one per iteration, more when the line search halves)
   double relative_gradient = 0.0; ///< |g_f| / max(|g_f^0|, |f_f|) at the step's end
   bool converged = true;      ///< with a tolerance: whether it was met
+  /// Wall-clock seconds of the step's two kinds of work (the rest is vector work, the mass's
+  /// products and the energy account): the passes over the pieces (forces, energies, rotations)
+  /// and the solves with the factor of A.
+  double pieces_seconds = 0.0;
+  double solve_seconds = 0.0;
 };
 
 /// The body a step moves: its corotated energy, mass, held DOFs and load.
@@ -106,9 +115,11 @@ public:
   void solve_step_matrix(Eigen::MatrixXd& B) const { factor_->solve(B); }
 
 private:
-  // E_n(u) (8.4) and its gradient on all DOFs.
-  double step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient);
-  void evaluate(const Eigen::VectorXd& u); // f_int, W, rotations at u into last_*
+  // E_n(u) (8.4), up to a constant, and its gradient on all DOFs.
+  double step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient, QuasiNewtonStepReport& report);
+  // A X = B in place (the factor's solve), timed into the report.
+  void solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report) const;
+  void remember(const Eigen::VectorXd& u, double W); // W at u; last_rotations_ hold u's
   Eigen::MatrixXd gather(const Eigen::VectorXd& full) const; // free DOF nodes x 3
   void scatter_add(const Eigen::MatrixXd& free, Eigen::VectorXd& full) const;
 
@@ -123,12 +134,14 @@ private:
   std::unique_ptr<GrowingCholesky> factor_;
   int factorisations_ = 0;
   double c_M_ = 0.0, c_D_ = 0.0;
-  // The step's constants: u~, b, the rotations of u_n.
+  // The step's constants: u~, b = f - alpha M v~, the pieces' gradient sums of the damping's
+  // reference u^ (step()), the rotations of u_n.
   Eigen::VectorXd u_tilde_, b_;
+  std::vector<Eigen::Matrix3d> damping_reference_sums_;
   std::vector<Eigen::Matrix3d> rotations_n_;
   std::deque<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs_; // L-BFGS's (s, y), newest last
   // The last evaluation of the body.
-  Eigen::VectorXd last_u_, last_f_int_;
+  Eigen::VectorXd last_u_;
   std::vector<Eigen::Matrix3d> last_rotations_;
   double last_W_ = 0.0;
   bool last_valid_ = false;
