@@ -35,8 +35,8 @@ public:
   /// The leading block as factorised.
   const Eigen::SparseMatrix<double>& leading_block() const { return leading_; }
 
-  /// Solves A X = B for a block of right-hand sides, in place (rows: the leading unknowns, then
-  /// the trailing ones).
+  /// Solves A X = B for three right-hand sides (x, y and z), in place (rows: the leading
+  /// unknowns, then the trailing ones).
   void solve(Eigen::MatrixXd& B) const;
 
 private:
