@@ -89,6 +89,10 @@ TEST_CASE("GrowingCholesky: the grown factor solves as the whole matrix's factor
   newmark.set_body(deeper.quasi_newton_body(deeper_pieces, 2.0, 0.01));
   CHECK(newmark.factorisations() == 1);
   CHECK(newmark.step_matrix().rows() > A.rows());
+  // The enrichments the deeper cut left as they were keep their Schur products (no solve).
+  MESSAGE("enrichment columns kept: " << newmark.kept_enrichment_columns() << " of " << newmark.step_matrix().rows() - standard);
+  CHECK(newmark.kept_enrichment_columns() > 0);
+  CHECK(newmark.kept_enrichment_columns() < newmark.step_matrix().rows() - standard);
   const Eigen::SparseMatrix<double> A_deeper = newmark.step_matrix();
   Eigen::MatrixXd B2 = Eigen::MatrixXd::Random(A_deeper.rows(), 3), X2 = B2;
   newmark.solve_step_matrix(X2);

@@ -152,7 +152,7 @@ EnergyAccount QuasiNewtonNewmark::start_account(const DynamicState& state) {
   return account;
 }
 
-void QuasiNewtonNewmark::solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report) const {
+void QuasiNewtonNewmark::solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report) {
   const auto start = std::chrono::steady_clock::now();
   factor_->solve(B);
   report.solve_seconds += seconds_since(start);

@@ -204,23 +204,30 @@ void CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A_in) {
 }
 
 void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  Eigen::MatrixXd X;
+  solve_columns(b, X);
+  x = X.col(0);
+}
+
+void CholmodSolver::solve_columns(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
   if (!cholmod_->factorised)
     throw std::logic_error("CholmodSolver::solve before factorize");
-  if (static_cast<std::size_t>(b.size()) != cholmod_->factor->n)
+  if (static_cast<std::size_t>(B.rows()) != cholmod_->factor->n)
     throw std::invalid_argument("CholmodSolver::solve: the right-hand side does not have the matrix's size");
-  solver_checks::require_finite_right_hand_side(b);
+  solver_checks::require_finite_right_hand_side(B);
   cholmod_dense b_view{};
-  b_view.nrow = b_view.d = b_view.nzmax = static_cast<std::size_t>(b.size());
-  b_view.ncol = 1;
-  b_view.x = const_cast<double*>(b.data()); // read only
+  b_view.nrow = b_view.d = static_cast<std::size_t>(B.rows());
+  b_view.ncol = static_cast<std::size_t>(B.cols());
+  b_view.nzmax = b_view.nrow * b_view.ncol;
+  b_view.x = const_cast<double*>(B.data()); // read only
   b_view.xtype = CHOLMOD_REAL;
   b_view.dtype = CHOLMOD_DOUBLE;
   cholmod_common& c = cholmod_->common;
   if (!cholmod_solve2(CHOLMOD_A, cholmod_->factor, &b_view, nullptr, &cholmod_->solution, nullptr, &cholmod_->workspace_y,
                       &cholmod_->workspace_e, &c))
     throw std::runtime_error("CHOLMOD's solve failed (status " + std::to_string(c.status) + ")");
-  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(cholmod_->solution->x), b.size());
-  if (!x.allFinite()) throw NotPositiveDefinite(not_positive_definite);
+  X = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(cholmod_->solution->x), B.rows(), B.cols());
+  if (!X.allFinite()) throw NotPositiveDefinite(not_positive_definite);
 }
 
 } // namespace kerf

@@ -14,7 +14,7 @@ inline const char* not_positive_definite =
     "the stiffness matrix is not positive definite: is the body held by enough Dirichlet conditions?";
 
 /// A NaN or infinite load would come back as a NaN solution: refuse it before solving.
-inline void require_finite_right_hand_side(const Eigen::VectorXd& b) {
+inline void require_finite_right_hand_side(const Eigen::MatrixXd& b) {
   if (!b.allFinite())
     throw std::invalid_argument("the right-hand side is not finite: an infinite or NaN load or prescribed displacement");
 }

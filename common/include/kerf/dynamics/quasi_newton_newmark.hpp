@@ -112,13 +112,15 @@ public:
   /// The free DOF nodes in A's order.
   const std::vector<int>& free_nodes() const { return free_nodes_; }
   /// Solves A X = B (rows: free_nodes()), in place.
-  void solve_step_matrix(Eigen::MatrixXd& B) const { factor_->solve(B); }
+  void solve_step_matrix(Eigen::MatrixXd& B) { factor_->solve(B); }
+  /// The trailing (enrichment) columns the last set_body found unchanged (GrowingCholesky).
+  Eigen::Index kept_enrichment_columns() const { return factor_->kept_columns(); }
 
 private:
   // E_n(u) (8.4), up to a constant, and its gradient on all DOFs.
   double step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient, QuasiNewtonStepReport& report);
   // A X = B in place (the factor's solve), timed into the report.
-  void solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report) const;
+  void solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report);
   void remember(const Eigen::VectorXd& u, double W); // W at u; last_rotations_ hold u's
   Eigen::MatrixXd gather(const Eigen::VectorXd& full) const; // free DOF nodes x 3
   void scatter_add(const Eigen::MatrixXd& free, Eigen::VectorXd& full) const;

@@ -42,6 +42,8 @@ public:
   void analyze_pattern(const Eigen::SparseMatrix<double>& A) override;
   void factorize(const Eigen::SparseMatrix<double>& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
+  /// A X = B for several right-hand sides at once (one pass over the factor for all of them).
+  void solve_columns(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
   int factorisations() const override { return factorisations_; }
 
   /// The counts of the last analyze_pattern.
