@@ -23,9 +23,10 @@
      passes over the pieces, the solves with the factor and the rest; its error: the largest
      distance of a node from the reference's over all steps, relative to the reference's largest
      displacement, and the sag (the lowest node's drop) at 1 s against the reference's.
-   - a change of topology: the step's set_body from the liver cut up to x = 0.04 to the liver cut
-     up to x = -0.03 (the factor of the mesh's nodes kept, the enrichments' rows factorised anew),
-     against a new integrator's set_body on the second (everything factorised).
+   - a change of topology: the step's set_body from the liver cut up to x = -0.025 to the liver
+     cut up to x = -0.03, the blade 5 mm further (the factor of the mesh's nodes kept, the Schur
+     products of the enrichments the cut did not change kept), against a new integrator's set_body
+     on the second (everything factorised); best of 5.
    The whole process's processor and wall time close the report: the program's own clocks are
    not all it costs. With --out FILE.md the rows also go to FILE.csv. */
 
@@ -44,6 +45,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -205,7 +207,7 @@ int main(int argc, char** argv) {
   csv << "tets,nodes,enrichments,step,iterations,ms_per_step,pieces_ms,solve_ms,rest_ms,evaluations_per_step,error,sag_mm,reference_sag_mm\n";
   table << "| tets | nodes | enrichments | step | ms/step | pieces | solve | rest | evaluations/step | error | sag at 1 s (mm) |\n"
         << "|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
-  topology << "| tets | enrichments before, after | grown factor (ms) | everything factorised (ms) |\n|---:|---:|---:|---:|\n";
+  topology << "| tets | enrichments before, after | grown factor (ms) | columns kept | everything factorised (ms) |\n|---:|---:|---:|---:|---:|\n";
   for (const int target : sizes) {
     const kerf::TetMesh mesh = kerf::make_liver_mesh(target);
     const std::vector<kerf::DirichletNodes> held = demo_holds(mesh);
@@ -251,20 +253,25 @@ int main(int argc, char** argv) {
       const Run run = chapter_8_run(liver, settings, steps);
       row("chapter 8, " + std::to_string(iterations) + " iterations", std::to_string(iterations), run, error_of(run), reference_sag);
     }
-    // A change of topology: the cut grown from x = 0.04 to x = -0.03.
-    const CutLiver shorter(mesh, held, 0.04);
+    // A change of topology: the cut grown by 5 mm, from x = -0.025 to x = -0.03 (the demo's blade
+    // moves 1.25 mm a step), best of 5.
+    const CutLiver shorter(mesh, held, -0.025);
     kerf::QuasiNewtonNewmark grown(dt, tissue, {});
-    grown.set_body(shorter.body());
-    auto start = kerf_measure::clock::now();
-    grown.set_body(liver.body());
-    const double grown_ms = 1e3 * seconds_since(start);
-    kerf::QuasiNewtonNewmark fresh(dt, tissue, {});
-    start = kerf_measure::clock::now();
-    fresh.set_body(liver.body());
-    const double fresh_ms = 1e3 * seconds_since(start);
+    double grown_ms = 1e300, fresh_ms = 1e300;
+    for (int repeat = 0; repeat < 5; ++repeat) {
+      grown.set_body(shorter.body());
+      auto start = kerf_measure::clock::now();
+      grown.set_body(liver.body());
+      grown_ms = std::min(grown_ms, 1e3 * seconds_since(start));
+      kerf::QuasiNewtonNewmark fresh(dt, tissue, {});
+      start = kerf_measure::clock::now();
+      fresh.set_body(liver.body());
+      fresh_ms = std::min(fresh_ms, 1e3 * seconds_since(start));
+    }
     char line[256];
-    std::snprintf(line, sizeof line, "| %ld | %ld, %ld | %.1f (%d factorisation) | %.1f |\n", tets,
-                  static_cast<long>(shorter.enrichment.num_enrichments()), enrichments, grown_ms, grown.factorisations(), fresh_ms);
+    std::snprintf(line, sizeof line, "| %ld | %ld, %ld | %.1f (%d factorisation) | %ld | %.1f |\n", tets,
+                  static_cast<long>(shorter.enrichment.num_enrichments()), enrichments, grown_ms, grown.factorisations(),
+                  static_cast<long>(grown.kept_enrichment_columns()), fresh_ms);
     topology << line;
     std::cerr << line;
   }

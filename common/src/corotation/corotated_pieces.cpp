@@ -3,6 +3,8 @@
 #include "kerf/fem/tet_shape_functions.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace kerf {
@@ -55,7 +57,7 @@ constexpr double exact_turn = 1e-7;
 } // namespace
 
 CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial& material, RotationMethod rotation)
-    : num_dof_nodes_(model.num_dof_nodes()), mu_(material.mu()), lambda_(material.lambda()), rotation_(rotation) {
+    : num_dof_nodes_(model.num_dof_nodes()), num_mesh_nodes_(model.mesh().num_nodes()), mu_(material.mu()), lambda_(material.lambda()), rotation_(rotation) {
   const TetMesh& mesh = model.mesh();
   if (mesh.order() != 1) throw std::invalid_argument("CorotatedPieces: the pieces are Tet4's (a Tet10's gradient varies)");
   if (model.num_branch_nodes() > 0)
@@ -64,8 +66,10 @@ CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
     double det_J = 0.0;
     const Eigen::Matrix<double, 4, 3> G = physical_shape_gradients<4>(tet_corners(mesh, t), tet4_shape_gradients(), det_J);
+    double pieces_volume = 0.0;
     for (int p = 0; p < model.num_integrated_pieces(t); ++p) {
       volume_.push_back(model.integrated_volume(t, p));
+      pieces_volume += volume_.back();
       for (int a = 0; a < 4; ++a) {
         const int node = mesh.tets(t, a);
         slot_node_.push_back(node);
@@ -78,7 +82,10 @@ CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial
         }
       }
       first_slot_.push_back(static_cast<int>(slot_node_.size()));
+      if (first_slot_.back() - first_slot_[first_slot_.size() - 2] > 4) enriched_pieces_.push_back(volume_.size() - 1);
     }
+    const double tet_volume = std::abs(det_J) / 6.0;
+    largest_volume_mismatch_ = std::max(largest_volume_mismatch_, std::abs(pieces_volume - tet_volume) / tet_volume);
   }
 }
 
@@ -164,15 +171,24 @@ CorotatedPieces::StepTerms CorotatedPieces::step_terms(const Eigen::VectorXd& u,
   return terms;
 }
 
-Eigen::SparseMatrix<double> CorotatedPieces::laplacian() const {
+Eigen::SparseMatrix<double> CorotatedPieces::laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const {
   std::vector<Eigen::Triplet<double>> entries;
-  for (std::size_t p = 0; p < volume_.size(); ++p)
+  for (std::size_t p : pieces)
     for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s)
       for (int r = first_slot_[p]; r < first_slot_[p + 1]; ++r)
-        entries.emplace_back(slot_node_[s], slot_node_[r], volume_[p] * slot_gradient_[s].dot(slot_gradient_[r]));
+        if (!enrichment_rows_only || slot_node_[s] >= num_mesh_nodes_ || slot_node_[r] >= num_mesh_nodes_)
+          entries.emplace_back(slot_node_[s], slot_node_[r], volume_[p] * slot_gradient_[s].dot(slot_gradient_[r]));
   Eigen::SparseMatrix<double> L(num_dof_nodes_, num_dof_nodes_);
   L.setFromTriplets(entries.begin(), entries.end());
   return L;
 }
+
+Eigen::SparseMatrix<double> CorotatedPieces::laplacian() const {
+  std::vector<std::size_t> all(volume_.size());
+  for (std::size_t p = 0; p < all.size(); ++p) all[p] = p;
+  return laplacian_of(all, false);
+}
+
+Eigen::SparseMatrix<double> CorotatedPieces::enrichment_laplacian() const { return laplacian_of(enriched_pieces_, true); }
 
 } // namespace kerf

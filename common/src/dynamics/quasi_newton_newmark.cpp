@@ -36,13 +36,14 @@ Eigen::SparseMatrix<double> scalar_mass(const Eigen::SparseMatrix<double>& M) {
   return M_s;
 }
 
-// The rows and columns of a node-indexed matrix at the nodes with a position (>= 0), in that order.
+// The rows and columns of a node-indexed matrix at the nodes with a position in [0, size), in that
+// order.
 Eigen::SparseMatrix<double> restrict_to(const Eigen::SparseMatrix<double>& A, const std::vector<int>& position, Eigen::Index size) {
   std::vector<Eigen::Triplet<double>> entries;
   for (Eigen::Index j = 0; j < A.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
       const int r = position[static_cast<std::size_t>(it.row())], c = position[static_cast<std::size_t>(it.col())];
-      if (r >= 0 && c >= 0) entries.emplace_back(r, c, it.value());
+      if (r >= 0 && c >= 0 && r < size && c < size) entries.emplace_back(r, c, it.value());
     }
   Eigen::SparseMatrix<double> restricted(size, size);
   restricted.setFromTriplets(entries.begin(), entries.end());
@@ -86,26 +87,47 @@ void QuasiNewtonNewmark::set_body(QuasiNewtonBody body) {
   c_M_ = 1.0 / (beta * dt_ * dt_) + body_.rayleigh_alpha * gamma / (beta * dt_);
   c_D_ = body_.rayleigh_beta * gamma / (beta * dt_);
   const double mu = material_.mu();
-  const double kappa = mu * (settings_.stiffness_in_mu > 0.0 ? settings_.stiffness_in_mu : 2.0 + material_.lambda() / mu);
-  const Eigen::SparseMatrix<double> M_s = scalar_mass(body_.M);
-  const Eigen::SparseMatrix<double> A = c_M_ * M_s + (1.0 + c_D_) * kappa * body_.pieces->laplacian();
-  std::vector<int> free_position(static_cast<std::size_t>(nodes), -1); // each DOF node's row in A, -1 if held
-  for (std::size_t k = 0; k < free_nodes_.size(); ++k) free_position[static_cast<std::size_t>(free_nodes_[k])] = static_cast<int>(k);
+  c_L_ = (1.0 + c_D_) * mu * (settings_.stiffness_in_mu > 0.0 ? settings_.stiffness_in_mu : 2.0 + material_.lambda() / mu);
+  free_position_.assign(static_cast<std::size_t>(nodes), -1);
+  for (std::size_t k = 0; k < free_nodes_.size(); ++k) free_position_[static_cast<std::size_t>(free_nodes_[k])] = static_cast<int>(k);
   free_mask_.setZero(3 * nodes);
   for (int node : free_nodes_) free_mask_.segment<3>(3 * node).setOnes();
-  const auto n = static_cast<Eigen::Index>(free_nodes_.size());
-  A_free_ = restrict_to(A, free_position, n);
-  mass_free_ = restrict_to(M_s, free_position, n);
-  const Eigen::Index k = n - num_standard;
-  const Eigen::SparseMatrix<double> A_ss = A_free_.topLeftCorner(num_standard, num_standard);
-  // The standard block is the uncut body's: keep its factor (growing_cholesky.hpp).
-  const bool same = factor_ && factor_->leading_size() == num_standard &&
-                    (A_ss - factor_->leading_block()).norm() <= 1e-12 * factor_->leading_block().norm();
-  if (!same) {
-    factor_ = std::make_unique<GrowingCholesky>(A_ss);
+  // A's block of the mesh's nodes is the uncut body's when the same nodes are free, the pieces'
+  // volumes sum to their tets' and the mass's block of the mesh's nodes is the one factorised:
+  // then its factor stays, and only the enrichments' rows are built (growing_cholesky.hpp).
+  const Eigen::SparseMatrix<double> M_s = scalar_mass(body_.M);
+  const Eigen::SparseMatrix<double> M_ss = restrict_to(M_s, free_position_, num_standard);
+  const bool grows = factor_ && free_standard_nodes_ == std::vector<int>(free_nodes_.begin(), free_nodes_.begin() + num_standard) &&
+                     body_.pieces->largest_volume_mismatch() <= 1e-12 && (M_ss - standard_mass_).norm() <= 1e-14 * standard_mass_.norm();
+  if (!grows) {
+    factor_ = std::make_unique<GrowingCholesky>(restrict_to(c_M_ * M_s + c_L_ * body_.pieces->laplacian(), free_position_, num_standard));
     ++factorisations_;
+    free_standard_nodes_.assign(free_nodes_.begin(), free_nodes_.begin() + num_standard);
+    standard_mass_ = M_ss;
   }
-  factor_->set_trailing(A_free_.topRightCorner(num_standard, k), A_free_.bottomRightCorner(k, k));
+  // The enrichments' columns of A: from the mass's and the Laplacian's enrichment entries.
+  std::vector<Eigen::Triplet<double>> se, ee;
+  const auto add = [&](const Eigen::SparseMatrix<double>& X, double scale) {
+    for (Eigen::Index j = 0; j < X.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(X, j); it; ++it) {
+        const int r = free_position_[static_cast<std::size_t>(it.row())], c = free_position_[static_cast<std::size_t>(it.col())];
+        if (r < 0 || c < num_standard) continue;
+        if (r < num_standard) se.emplace_back(r, c - num_standard, scale * it.value());
+        else ee.emplace_back(r - num_standard, c - num_standard, scale * it.value());
+      }
+  };
+  add(M_s, c_M_);
+  add(body_.pieces->enrichment_laplacian(), c_L_);
+  const auto k = static_cast<Eigen::Index>(free_nodes_.size()) - num_standard;
+  Eigen::SparseMatrix<double> A_se(num_standard, k), A_ee(k, k);
+  A_se.setFromTriplets(se.begin(), se.end());
+  A_ee.setFromTriplets(ee.begin(), ee.end());
+  factor_->set_trailing(A_se, A_ee);
+}
+
+Eigen::SparseMatrix<double> QuasiNewtonNewmark::step_matrix() const {
+  return restrict_to(c_M_ * scalar_mass(body_.M) + c_L_ * body_.pieces->laplacian(), free_position_,
+                     static_cast<Eigen::Index>(free_nodes_.size()));
 }
 
 void QuasiNewtonNewmark::remember(const Eigen::VectorXd& u, double W) {
@@ -138,7 +160,8 @@ DynamicState QuasiNewtonNewmark::initial_state(const Eigen::VectorXd& u0, const 
   body_.pieces->warped_product(last_rotations_, v0, Kv);
   const Eigen::VectorXd r = body_.load - f_int - body_.rayleigh_alpha * (body_.M * v0) - body_.rayleigh_beta * Kv;
   // M_ff a_f = r_f with the scalar mass of the free nodes.
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass(mass_free_);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass(
+      restrict_to(scalar_mass(body_.M), free_position_, static_cast<Eigen::Index>(free_nodes_.size())));
   if (mass.info() != Eigen::Success) throw std::runtime_error("QuasiNewtonNewmark: the free nodes' mass is not positive definite");
   const Eigen::MatrixXd a_f = mass.solve(gather(r));
   scatter_add(a_f, state.a);

@@ -71,6 +71,12 @@ public:
   /// slots of every piece: each Cartesian component's block of the linear stiffness of a
   /// material with mu = 1, lambda = 0 and no cross terms (8.5).
   Eigen::SparseMatrix<double> laplacian() const;
+  /// The entries of laplacian() in the rows and columns of the enrichments (DOF nodes from the
+  /// mesh's num_nodes() on), from the pieces that carry one: what a cut changes of it.
+  Eigen::SparseMatrix<double> enrichment_laplacian() const;
+  /// The largest |sum_p V_p - V_t| / V_t over the tets: the Laplacian's block of the mesh's nodes
+  /// is the uncut mesh's exactly when this is round-off.
+  double largest_volume_mismatch() const { return largest_volume_mismatch_; }
 
 private:
   // sum_s q_s g_s^T over piece p's slots: (8.1) without the identity.
@@ -82,7 +88,13 @@ private:
   // Adds V P g_s of piece p to its slots.
   void add_piece_force(std::size_t p, const Eigen::Matrix3d& VP, Eigen::VectorXd& force) const;
 
+  // The Laplacian's entries of the given pieces (triplets summed).
+  Eigen::SparseMatrix<double> laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const;
+
   Eigen::Index num_dof_nodes_ = 0;
+  Eigen::Index num_mesh_nodes_ = 0;
+  double largest_volume_mismatch_ = 0.0;
+  std::vector<std::size_t> enriched_pieces_; // the pieces with an enrichment slot
   double mu_ = 0.0, lambda_ = 0.0;
   RotationMethod rotation_;
   std::vector<double> volume_;              // V_p

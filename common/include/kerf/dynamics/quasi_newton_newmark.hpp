@@ -108,7 +108,7 @@ public:
   /// How often A's standard block was factorised (1 unless a cut changed it).
   int factorisations() const { return factorisations_; }
   /// The matrix A on the free DOF nodes, standard then enriched (for tests).
-  Eigen::SparseMatrix<double> step_matrix() const { return A_free_; }
+  Eigen::SparseMatrix<double> step_matrix() const;
   /// The free DOF nodes in A's order.
   const std::vector<int>& free_nodes() const { return free_nodes_; }
   /// Solves A X = B (rows: free_nodes()), in place.
@@ -131,8 +131,10 @@ private:
   QuasiNewtonBody body_;
   std::vector<int> free_nodes_;
   Eigen::VectorXd free_mask_;      // 1 on the free DOFs, 0 on the held ones
-  Eigen::SparseMatrix<double> A_free_;
-  Eigen::SparseMatrix<double> mass_free_; // M_s on the free nodes (the initial acceleration's)
+  std::vector<int> free_position_;           // each DOF node's row in A, -1 if held
+  double c_L_ = 0.0;                         // (1 + c_D) kappa: A = c_M M_s + c_L L
+  std::vector<int> free_standard_nodes_;     // the mesh's free nodes when A's factor was made ...
+  Eigen::SparseMatrix<double> standard_mass_; // ... and their block of M_s
   std::unique_ptr<GrowingCholesky> factor_;
   int factorisations_ = 0;
   double c_M_ = 0.0, c_D_ = 0.0;
