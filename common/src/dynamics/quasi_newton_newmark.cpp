@@ -194,6 +194,28 @@ double QuasiNewtonNewmark::step_energy(const Eigen::VectorXd& u, Eigen::VectorXd
   return 0.5 * c_M_ * delta.dot(M_delta) + c_D_ * terms.half_dKd + terms.W - b_.dot(u);
 }
 
+Eigen::MatrixXd QuasiNewtonNewmark::descent_direction(const Eigen::MatrixXd& g, QuasiNewtonStepReport& report) {
+  // L-BFGS's two-loop recursion, d = -H g with H built from A^{-1} and the pairs (s, y).
+  Eigen::MatrixXd q = g;
+  std::vector<double> alphas(pairs_.size());
+  for (std::size_t i = pairs_.size(); i-- > 0;) {
+    alphas[i] = inner(pairs_[i].first, q) / inner(pairs_[i].second, pairs_[i].first);
+    q -= alphas[i] * pairs_[i].second;
+  }
+  solve(q, report);
+  for (std::size_t i = 0; i < pairs_.size(); ++i) {
+    const double b = inner(pairs_[i].second, q) / inner(pairs_[i].second, pairs_[i].first);
+    q += (alphas[i] - b) * pairs_[i].first;
+  }
+  if (inner(g, q) > 0.0) return -q;
+  // Not a descent direction (pairs from a curvature the energy no longer has): forget them, take
+  // A^{-1}'s, which is one (A is positive definite).
+  pairs_.clear();
+  q = g;
+  solve(q, report);
+  return -q;
+}
+
 QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
   QuasiNewtonStepReport report;
@@ -216,7 +238,6 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   Eigen::MatrixXd g = gather(gradient);
   const double scale = std::max(g.norm(), gather(body_.load).norm());
   if (!settings_.keep_history) pairs_.clear();
-  auto& pairs = pairs_;
   const bool tight = settings_.tolerance > 0.0;
   for (int it = 0;; ++it) {
     report.relative_gradient = scale > 0.0 ? g.norm() / scale : 0.0;
@@ -226,26 +247,8 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
       break;
     }
     if (!tight && it >= settings_.iterations) break;
-    // The two-loop recursion: d = -H g.
-    Eigen::MatrixXd q = g;
-    std::vector<double> alphas(pairs.size());
-    for (std::size_t i = pairs.size(); i-- > 0;) {
-      alphas[i] = inner(pairs[i].first, q) / inner(pairs[i].second, pairs[i].first);
-      q -= alphas[i] * pairs[i].second;
-    }
-    solve(q, report);
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const double b = inner(pairs[i].second, q) / inner(pairs[i].second, pairs[i].first);
-      q += (alphas[i] - b) * pairs[i].first;
-    }
-    Eigen::MatrixXd d = -q;
-    double slope = inner(g, d);
-    if (!(slope < 0.0)) { // not a descent direction: forget the pairs, take A^{-1}'s
-      pairs.clear();
-      d = -g;
-      solve(d, report);
-      slope = inner(g, d);
-    }
+    const Eigen::MatrixXd d = descent_direction(g, report);
+    const double slope = inner(g, d);
     // Backtracking on E_n: the full step unless it fails Armijo's test.
     double step_length = 1.0;
     Eigen::VectorXd x_new, gradient_new;
@@ -261,8 +264,8 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
     const Eigen::MatrixXd g_new = gather(gradient_new);
     Eigen::MatrixXd s = step_length * d, y = g_new - g;
     if (inner(s, y) > 1e-12 * s.norm() * y.norm()) {
-      pairs.emplace_back(std::move(s), std::move(y));
-      if (static_cast<int>(pairs.size()) > settings_.history) pairs.pop_front();
+      pairs_.emplace_back(std::move(s), std::move(y));
+      if (static_cast<int>(pairs_.size()) > settings_.history) pairs_.pop_front();
     }
     x = std::move(x_new);
     g = g_new;

@@ -81,9 +81,10 @@ struct QuasiNewtonBody {
 /// enrichments (its pieces' volumes sum to the tet's), so the factor only grows
 /// (growing_cholesky.hpp). Converged, the step is chapter 7's Newton step; at a fixed number of
 /// iterations it is not: on a cut bar of liver tissue swinging 18 cm under its weight, 3, 4, 5
-/// and 10 iterations a step stay within 2.2 %, 0.43 %, 0.24 % and 0.024 % of the largest
-/// displacement of chapter 7's tight Newton run, and 2 iterations a step diverge
-/// (tests/chapter_08/test_quasi_newton_step.cpp).
+/// and 10 iterations a step stay within 2.2 %, 0.43 %, 0.24 % and 0.022 % of the largest
+/// displacement of chapter 7's tight Newton run, and 2 iterations a step miss by 65 %
+/// (tests/chapter_08/test_quasi_newton_step.cpp); on chapter 7's cut liver at 10k tets, 4
+/// iterations stay within 0.72 % (bench/bench_real_time.cpp).
 class QuasiNewtonNewmark {
 public:
   QuasiNewtonNewmark(double dt, const LinearMaterial& material, QuasiNewtonNewmarkSettings settings);
@@ -119,6 +120,8 @@ public:
 private:
   // E_n(u) (8.4), up to a constant, and its gradient on all DOFs.
   double step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient, QuasiNewtonStepReport& report);
+  // -H g, L-BFGS's direction (or A^{-1}'s where the pairs give no descent).
+  Eigen::MatrixXd descent_direction(const Eigen::MatrixXd& g, QuasiNewtonStepReport& report);
   // A X = B in place (the factor's solve), timed into the report.
   void solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report);
   void remember(const Eigen::VectorXd& u, double W); // W at u; last_rotations_ hold u's
