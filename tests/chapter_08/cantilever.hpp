@@ -22,22 +22,24 @@ constexpr double dt = 0.01, g = 9.81;
 // 10 x 4 x 4 cm, cut at x = 5.2 cm by a plane from the top down to z = `cut_bottom` (below 0:
 // through), held at x = 0.
 struct Bar {
+  kerf::LinearMaterial material;
   cut_body::CutBody body;
   kerf::DofMap dofs;
   Eigen::SparseMatrix<double> M;
   Eigen::VectorXd weight;
   std::shared_ptr<kerf::SparseAssembler> assembler;
 
-  explicit Bar(double cut_bottom, Eigen::Vector3i cells = {10, 4, 4})
-      : body(kerf::make_box_mesh({0, 0, 0}, {0.1, 0.04, 0.04}, cells),
+  explicit Bar(double cut_bottom, Eigen::Vector3i cells = {10, 4, 4}, const kerf::LinearMaterial& bar_material = tissue)
+      : material(bar_material),
+        body(kerf::make_box_mesh({0, 0, 0}, {0.1, 0.04, 0.04}, cells),
              {cut_body::plane_surface({1, 0, 0}, 0.052, {0.052, 0.02, 0.5 * (0.06 + cut_bottom)},
                                       0.5 * (0.06 - cut_bottom))},
-             tissue) {
+             bar_material) {
     std::vector<int> held;
     for (Eigen::Index v = 0; v < body.mesh.num_nodes(); ++v)
       if (body.mesh.nodes(v, 0) < 1e-9) held.push_back(static_cast<int>(v));
     dofs = kerf::make_dof_map(body.model.num_dof_nodes(), {{held, {0, 0, 0}}});
-    M = kerf::lump_cut_xfem_mass(body.model, tissue.density, kerf::LumpingScheme::bernstein, cut_body::subtets);
+    M = kerf::lump_cut_xfem_mass(body.model, material.density, kerf::LumpingScheme::bernstein, cut_body::subtets);
     Eigen::VectorXd down = Eigen::VectorXd::Zero(M.rows());
     for (Eigen::Index v = 0; v < body.mesh.num_nodes(); ++v) down[3 * v + 2] = -g;
     weight = M * down;
@@ -80,21 +82,21 @@ std::vector<Eigen::VectorXd> from_rest(Integrator& newmark, Eigen::Index size, i
   return u;
 }
 
-// The displacements after `steps` steps from rest: chapter 7's Newton step.
-inline std::vector<Eigen::VectorXd> newton_run(const Bar& bar, double alpha, double beta, int steps) {
+// The displacements after `steps` steps of `step` s from rest: chapter 7's Newton step.
+inline std::vector<Eigen::VectorXd> newton_run(const Bar& bar, double alpha, double beta, int steps, double step = dt) {
   const kerf::NonlinearDynamicSystem system = bar.newton_system(alpha, beta);
   kerf::NonlinearNewmarkSettings settings;
   settings.update = kerf::RotationUpdate::newton;
   settings.tolerance = 1e-10;
-  kerf::NonlinearNewmarkIntegrator newmark(system, dt, settings);
+  kerf::NonlinearNewmarkIntegrator newmark(system, step, settings);
   return from_rest(newmark, bar.M.rows(), steps);
 }
 
 // The same with chapter 8's step.
 inline std::vector<Eigen::VectorXd> quasi_newton_run(const Bar& bar, double alpha, double beta, int steps,
-                                                     kerf::QuasiNewtonNewmarkSettings settings) {
-  const kerf::CorotatedPieces pieces(bar.body.model, tissue, kerf::RotationMethod::automatic);
-  kerf::QuasiNewtonNewmark newmark(dt, tissue, settings);
+                                                     kerf::QuasiNewtonNewmarkSettings settings, double step = dt) {
+  const kerf::CorotatedPieces pieces(bar.body.model, bar.material, kerf::RotationMethod::automatic);
+  kerf::QuasiNewtonNewmark newmark(step, bar.material, settings);
   newmark.set_body(bar.quasi_newton_body(pieces, alpha, beta));
   return from_rest(newmark, bar.M.rows(), steps);
 }

@@ -191,3 +191,42 @@ TEST_CASE("Chapter 8's step refuses what its one scalar matrix cannot hold") {
   explicit_step.newmark.beta = 0.0;
   CHECK_THROWS_AS(kerf::QuasiNewtonNewmark(cantilever::dt, cantilever::tissue, explicit_step), std::invalid_argument);
 }
+
+TEST_CASE("Where chapter 8's step fails: nearly incompressible tissue and a large time step need more iterations") {
+  // The error against chapter 7's Newton step, relative to the largest displacement, over 0.6 s.
+  const auto error = [](const Bar& bar, double step, int iterations) {
+    const int steps = static_cast<int>(0.6 / step + 0.5);
+    const std::vector<Eigen::VectorXd> newton = cantilever::newton_run(bar, 2.0, 0.01, steps, step);
+    kerf::QuasiNewtonNewmarkSettings settings;
+    settings.iterations = iterations;
+    const std::vector<Eigen::VectorXd> run = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, settings, step);
+    const Eigen::Index nodes = bar.body.mesh.num_nodes();
+    return cantilever::largest_difference(newton, run, nodes) / cantilever::largest_displacement(newton, nodes);
+  };
+  // nu = 0.49: lambda = 49 mu, so A's kappa = 2 mu + lambda is 25 times the shear stiffness that
+  // bending feels, and L-BFGS needs more pairs to correct it (measured: 5.0 % at 4 iterations,
+  // 0.15 % at 16).
+  const Bar incompressible(0.015, {10, 4, 4}, kerf::LinearMaterial{4000.0, 0.49, 1060.0});
+  const double at_4 = error(incompressible, cantilever::dt, 4), at_16 = error(incompressible, cantilever::dt, 16);
+  MESSAGE("nu = 0.49: " << at_4 << " at 4 iterations, " << at_16 << " at 16");
+  CHECK(at_4 > 0.02);
+  CHECK(at_16 < 0.005);
+  // dt = 40 ms, four times chapter 7's: the mass no longer dominates A, whose Laplacian then
+  // stands for the whole stiffness (measured: 15 % at 4 iterations, 0.79 % at 16).
+  const Bar bar(0.015);
+  const double long_4 = error(bar, 0.04, 4), long_16 = error(bar, 0.04, 16);
+  MESSAGE("dt = 40 ms: " << long_4 << " at 4 iterations, " << long_16 << " at 16");
+  CHECK(long_4 > 0.02);
+  CHECK(long_16 < 0.02);
+}
+
+TEST_CASE("Chapter 8's step stays bounded at ten times chapter 7's time step") {
+  // dt = 0.1 s: no accuracy is claimed, but the bar, 10 cm long and held at one end, cannot move
+  // a node further than twice its length, and nothing may become NaN.
+  const Bar bar(0.015);
+  const std::vector<Eigen::VectorXd> run = cantilever::quasi_newton_run(bar, 2.0, 0.01, 10, {}, 0.1);
+  for (const Eigen::VectorXd& u : run) REQUIRE(u.allFinite());
+  const double largest = cantilever::largest_displacement(run, bar.body.mesh.num_nodes());
+  MESSAGE("largest displacement at dt = 0.1 s: " << largest << " m");
+  CHECK(largest < 0.2);
+}
