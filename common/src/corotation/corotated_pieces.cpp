@@ -42,11 +42,12 @@ Eigen::Matrix3d warm_rotation(const Eigen::Matrix3d& F, const Eigen::Matrix3d& R
     const double det_H = H.row(0).dot(H_adjugate.col(0));
     if (!(det_H > 0.0 && H(0, 0) > 0.0)) break;
     const Eigen::Vector3d w = (0.5 / det_H) * (H_adjugate * skew); // theta / 2
-    // Cayley: (I - [w])^{-1} (I + [w]) = I + 2 ([w] + [w]^2) / (1 + |w|^2).
-    Eigen::Matrix3d W;
-    W << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
-    R = R * (Eigen::Matrix3d::Identity() + (2.0 / (1.0 + w.squaredNorm())) * (W + W * W));
-    if (4.0 * w.squaredNorm() < tolerance * tolerance) return R;
+    // Cayley: (I - [w])^{-1} (I + [w]) = I + 2 ([w] + [w]^2) / (1 + |w|^2), [w]^2 = w w^T - |w|^2 I.
+    const double w2 = w.squaredNorm();
+    Eigen::Matrix3d turn = w * w.transpose() - w2 * Eigen::Matrix3d::Identity();
+    turn(0, 1) -= w.z(), turn(1, 0) += w.z(), turn(0, 2) += w.y(), turn(2, 0) -= w.y(), turn(1, 2) -= w.x(), turn(2, 1) += w.x();
+    R = R * (Eigen::Matrix3d::Identity() + (2.0 / (1.0 + w2)) * turn);
+    if (4.0 * w2 < tolerance * tolerance) return R;
   }
   return element_rotation(F, method).R;
 }

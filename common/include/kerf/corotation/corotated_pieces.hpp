@@ -67,9 +67,12 @@ public:
   StepTerms step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums, double c,
                        const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
                        std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance = 1e-7) const;
-  /// The scalar Laplacian on the DOF nodes, L_ij = sum_p V_p g_i . g_j (m), summed over the
-  /// slots of every piece: each Cartesian component's block of the linear stiffness of a
-  /// material with mu = 1, lambda = 0 and no cross terms (8.5).
+  /// The scalar Laplacian of the pieces on the DOF nodes (m), summed over the slots i, j of
+  /// every piece p:
+  ///
+  ///   L_ij = sum_p V_p g_i . g_j,   so that   sum_ij L_ij q_i . q_j = int |grad u|^2,       (8.5)
+  ///
+  /// the same for x, y and z: one n x n matrix where the stiffness is 3n x 3n.
   Eigen::SparseMatrix<double> laplacian() const;
   /// The entries of laplacian() in the rows and columns of the enrichments (DOF nodes from the
   /// mesh's num_nodes() on), from the pieces that carry one: what a cut changes of it.
