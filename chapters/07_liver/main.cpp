@@ -70,6 +70,7 @@
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/scene/scene_quadrature.hpp"
 #include "kerf/scene/scene_quasi_static.hpp"
+#include "kerf/xfem/blade_cut.hpp"
 #include "kerf/xfem/blade_pull_back.hpp"
 #include "kerf/xfem/cut_faces.hpp"
 #include "kerf/xfem/cut_opening.hpp"
@@ -233,7 +234,6 @@ private:
   void setup_visual(bool need_view, bool on_screen);
   void apply_cut();
   void setup_system();
-  bool advance_blade(const kerf::BladeEdge* world, bool blade_done);
   void assemble_at(const Eigen::VectorXd& u, kerf::RotationMethod rotation);
   void cut(const kerf::BladeEdge* blade, bool blade_done);
   void do_timestep(int step, bool cut_next, const kerf::BladeEdge* next, bool next_done);
@@ -254,16 +254,10 @@ private:
   std::unique_ptr<kerf::PointLocator> locator_;
   std::vector<kerf::DirichletNodes> held_;
 
-  // The cut as it grows: the sheets the blade has left (one per pass through the organ, the last
-  // one perhaps still growing), and the crossing state of every edge and tet.
+  // The cut as it grows (xfem/blade_cut.hpp): the blade's path, the sheets it has left and the
+  // tets they have crossed.
   std::unique_ptr<kerf::BladePath> path_;
-  double quad_length_ = 0.0;
-  std::vector<kerf::CutSheet> sheets_;
-  bool sheet_open_ = false;              // the blade is in the tissue and the last sheet grows
-  std::optional<kerf::BladeEdge> outside_edge_; // the blade's last world edge before it entered
-  kerf::ReferenceBlade last_blade_;
-  std::unique_ptr<kerf::SemiProgressiveCut> crossing_;
-  Eigen::AlignedBox3d grown_since_rebuild_; // the box of the sheets' triangles added since the model was built
+  std::unique_ptr<kerf::BladeCut> blade_cut_;
   int topology_changes_ = 0;
 
   // The model of the current cut (rebuilt by apply_cut), and what it refers to.
@@ -349,26 +343,17 @@ void LiverCut::make_mesh() {
 
 // @sect4{LiverCut::setup_blade}
 //
-// The path, the crossing state, and the sheet's quad length: the scene's, or a quarter of the
-// mesh's mean edge (Gutierrez: "better responses if the size of this quad is approximated to the
-// average sizes of the elements"; a quarter keeps the delay before a tet is cut below the tet).
+// The path and the cut it grows, whose sheet keeps the blade's edge every quad length: the
+// scene's, or a quarter of the mesh's mean edge (blade_cut.hpp); 2 mm for the mouse of a scene
+// without a blade.
 void LiverCut::setup_blade() {
-  crossing_ = std::make_unique<kerf::SemiProgressiveCut>(mesh_);
+  blade_cut_ = std::make_unique<kerf::BladeCut>(mesh_, scene_.blade.given ? scene_.blade.quad_length : 0.002, scene_.blade.samples);
   if (!scene_.blade.given) return;
   path_ = std::make_unique<kerf::BladePath>(scene_.blade.path);
-  quad_length_ = scene_.blade.quad_length;
-  if (quad_length_ == 0.0) {
-    double length = 0.0;
-    for (int e = 0; e < crossing_->num_edges(); ++e) {
-      const std::array<int, 2> ends = crossing_->edge_nodes(e);
-      length += (mesh_.nodes.row(ends[0]) - mesh_.nodes.row(ends[1])).norm();
-    }
-    quad_length_ = 0.25 * length / crossing_->num_edges();
-  }
   std::ostringstream line;
   line.precision(3);
   line << "blade: " << path_->keyframes().size() << " keyframes, " << path_->start_time() << " s to " << path_->end_time()
-       << " s, quad length " << 1e3 * quad_length_ << " mm";
+       << " s, quad length " << 1e3 * blade_cut_->quad_length() << " mm";
   report(line.str());
 }
 
@@ -423,16 +408,12 @@ void LiverCut::apply_cut() {
                                                     : model_->energy(state_.u, false);
     step_times_.output += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  std::vector<kerf::TriangleSurface> surfaces;
-  for (const kerf::CutSheet& sheet : sheets_)
-    if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
   Lap lap;
-  auto cuts = std::make_unique<kerf::CutSurfaces>(std::move(surfaces));
+  auto cuts = std::make_unique<kerf::CutSurfaces>(blade_cut_->surfaces());
   // Only the tets near the quads added since the last rebuild can have new pieces: the others
   // keep theirs (recut_mesh_into_pieces).
-  auto pieces = std::make_unique<kerf::MeshPieces>(pieces_ ? kerf::recut_mesh_into_pieces(mesh_, *cuts, *pieces_, grown_since_rebuild_)
+  auto pieces = std::make_unique<kerf::MeshPieces>(pieces_ ? kerf::recut_mesh_into_pieces(mesh_, *cuts, *pieces_, blade_cut_->take_grown_box())
                                                            : kerf::cut_mesh_into_pieces(mesh_, *cuts, neighbours_));
-  grown_since_rebuild_.setEmpty();
   rebuild_times_.pieces = lap();
   std::unique_ptr<kerf::SceneCrackTip> crack_tip;
   std::unique_ptr<kerf::SurfaceEnrichment> enrichment;
@@ -493,7 +474,7 @@ void LiverCut::apply_cut() {
       for (int p = 0; p < model_->num_integrated_pieces(t); ++p) volume += model_->integrated_volume(t, p);
     char row[512];
     std::snprintf(row, sizeof row, "%d,%.17g,%d,%ld,%ld,%.6e,%.6e,%.17g,%.17g,%.17g,%.17g\n", topology_changes_ + 1, state_.t,
-                  static_cast<int>(crossing_->crossed_tets().size()), static_cast<long>(this->enrichment().num_enrichments()),
+                  static_cast<int>(blade_cut_->crossing().crossed_tets().size()), static_cast<long>(this->enrichment().num_enrichments()),
                   static_cast<long>(dofs_.num_free), volume / mesh_volume_ - 1.0, body_mass_ / (scene_.material.density * mesh_volume_) - 1.0,
                   kinetic_before, after.kinetic, elastic_before, after.elastic);
     cuts_csv_ << row;
@@ -627,52 +608,6 @@ void LiverCut::assemble_at(const Eigen::VectorXd& u, kerf::RotationMethod rotati
   step_times_.assemble += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// @sect4{LiverCut::advance_blade}
-//
-// One frame of the blade: pull its edge back, grow the sheet, and ask the semi-progressive cut
-// which tets the new quads have crossed. The blade's life in the tissue:
-// - outside (no sample pulls back): remember its edge; if a sheet was growing, the blade has
-//   left the body: its edge closes the sheet, mapped by the last frame's anchor (a little past
-//   the skin);
-// - entering: a new sheet starts with the edge of the frame before, mapped by this frame's
-//   anchor, so that the sheet begins outside the skin and the cut is open there;
-// - inside: the edge is offered to the sheet;
-// - away (nullptr: the interactive mode's mouse button is up): the sheet, if open, ends where it
-//   is, and the next contact starts a new one at its own edge.
-// Returns whether a tet became crossed (the topology changed).
-bool LiverCut::advance_blade(const kerf::BladeEdge* away_or_world, bool blade_done) {
-  if (!away_or_world) {
-    sheet_open_ = false;
-    outside_edge_.reset();
-    return false;
-  }
-  const kerf::BladeEdge& world = *away_or_world;
-  const kerf::ReferenceBlade blade = kerf::pull_back_blade_edge(*model_, *locator_, state_.u, world, scene_.blade.samples,
-                                                                sheet_open_ ? &last_blade_ : nullptr, 1e-9);
-  std::vector<kerf::SweptTriangle> added;
-  if (!blade.in_tissue()) {
-    if (sheet_open_) {
-      const kerf::BladeEdge closing{last_blade_.anchor.map(world.start), last_blade_.anchor.map(world.end)};
-      added = sheets_.back().offer(closing, true);
-      sheet_open_ = false;
-    }
-    outside_edge_ = world;
-  } else {
-    if (!sheet_open_) {
-      sheets_.emplace_back(quad_length_);
-      const kerf::BladeEdge before = outside_edge_ ? *outside_edge_ : world;
-      sheets_.back().offer({blade.anchor.map(before.start), blade.anchor.map(before.end)});
-      sheet_open_ = true;
-    }
-    added = sheets_.back().offer(blade.edge, blade_done);
-    last_blade_ = blade;
-  }
-  if (added.empty()) return false;
-  for (const kerf::SweptTriangle& triangle : added)
-    for (const Eigen::Vector3d& corner : triangle) grown_since_rebuild_.extend(corner);
-  return !crossing_->add_swept_triangles(added).empty();
-}
-
 // @sect4{LiverCut::check_state}
 //
 // As in chapter 6: no NaN, and an energy bounded by what was put in.
@@ -686,7 +621,7 @@ void LiverCut::check_state(int step) const { kerf::check_bounded_state(state_, a
 void LiverCut::cut(const kerf::BladeEdge* blade, bool blade_done) {
   using clock = std::chrono::steady_clock;
   auto start = clock::now();
-  const bool crossed = path_ && advance_blade(blade, blade_done);
+  const bool crossed = path_ && blade_cut_->advance(*model_, *locator_, state_.u, blade, blade_done);
   step_times_.blade += std::chrono::duration<double>(clock::now() - start).count();
   if (!crossed) return;
   start = clock::now();
@@ -791,7 +726,7 @@ void LiverCut::output_step(int step) {
   step_times_.output += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (view_ && scene_.render.every > 0 && (step % scene_.render.every == 0 || step == scene_.time.steps)) draw(step);
   std::snprintf(row, sizeof row, "%d,%.17g,%ld,%d,%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n", step, state_.t, static_cast<long>(dofs_.num_free),
-                static_cast<int>(crossing_->crossed_tets().size()), step_times_.topology > 0.0 ? 1 : 0, step_times_.blade,
+                static_cast<int>(blade_cut_->crossing().crossed_tets().size()), step_times_.topology > 0.0 ? 1 : 0, step_times_.blade,
                 step_times_.topology, step_times_.assemble, step_times_.solve, step_times_.render, step_times_.output);
   timings_csv_ << row;
 }
@@ -903,7 +838,7 @@ void LiverCut::run() {
       const double rate = step / seconds_since(start);
       std::ostringstream line;
       line.precision(3);
-      line << "step " << step << "/" << steps << " (t = " << state_.t << " s): " << crossing_->crossed_tets().size() << " tets cut, "
+      line << "step " << step << "/" << steps << " (t = " << state_.t << " s): " << blade_cut_->crossing().crossed_tets().size() << " tets cut, "
            << dofs_.num_free << " unknowns; " << rate << " steps/s, about " << (steps - step) / rate << " s left";
       report(line.str());
       last_line = clock::now();
@@ -921,8 +856,9 @@ void LiverCut::run() {
   report(line.str());
   std::ostringstream cut;
   cut.precision(4);
-  cut << "cut: " << crossing_->crossed_tets().size() << " tets crossed, " << topology_changes_ << " topology changes, "
-      << sheets_.size() << " sheets of " << (sheets_.empty() ? 0 : sheets_.back().num_triangles()) << " triangles, "
+  cut << "cut: " << blade_cut_->crossing().crossed_tets().size() << " tets crossed, " << topology_changes_ << " topology changes, "
+      << blade_cut_->sheets().size() << " sheets of " << (blade_cut_->sheets().empty() ? 0 : blade_cut_->sheets().back().num_triangles())
+      << " triangles, "
       << enrichment().num_enrichments() << " enrichments; energy: kinetic " << account_.kinetic << " J, elastic " << account_.elastic
       << " J, work " << account_.external_work << " J, dissipated " << account_.dissipated() << " J = damping " << account_.damping
       << " J + numerical (the rest of the balance) " << account_.numerical << " J";
@@ -947,7 +883,6 @@ void LiverCut::run_interactive() {
   rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
   apply_cut();
   const double depth = path_ ? (path_->keyframes().front().edge.end - path_->keyframes().front().edge.start).norm() : 0.06;
-  if (!path_) quad_length_ = 0.002;
   std::filesystem::create_directories(options_.out_dir);
   timings_csv_.open(options_.out_dir / "timings.csv");
   timings_csv_ << "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n";
@@ -1008,7 +943,7 @@ void LiverCut::run_interactive() {
     const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("step %d (t = %.2f s): %.1f ms (blade %.2f, topology %.1f, assemble %.1f, solve %.1f, render %.1f), %zu tets cut\n", step,
                 state_.t, ms, 1e3 * step_times_.blade, 1e3 * step_times_.topology, 1e3 * step_times_.assemble, 1e3 * step_times_.solve,
-                1e3 * step_times_.render, crossing_->crossed_tets().size());
+                1e3 * step_times_.render, blade_cut_->crossing().crossed_tets().size());
     std::fflush(stdout);
     output_step(step);
   };
@@ -1047,7 +982,7 @@ void LiverCut::run_interactive() {
       interactor->InvokeEvent(vtkCommand::TimerEvent);
     }
     report("played " + std::to_string(script.size()) + " events over " + std::to_string(last) + " steps; " +
-           std::to_string(crossing_->crossed_tets().size()) + " tets cut");
+           std::to_string(blade_cut_->crossing().crossed_tets().size()) + " tets cut");
   }
   interactor->Delete();
 }

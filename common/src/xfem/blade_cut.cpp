@@ -1,0 +1,72 @@
+#include "kerf/xfem/blade_cut.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace kerf {
+
+namespace {
+
+double mean_edge_length(const TetMesh& mesh, const SemiProgressiveCut& crossing) {
+  double length = 0.0;
+  for (int e = 0; e < crossing.num_edges(); ++e) {
+    const std::array<int, 2> ends = crossing.edge_nodes(e);
+    length += (mesh.nodes.row(ends[0]) - mesh.nodes.row(ends[1])).norm();
+  }
+  return length / crossing.num_edges();
+}
+
+} // namespace
+
+BladeCut::BladeCut(const TetMesh& mesh, double quad_length, int samples) : samples_(samples), crossing_(mesh) {
+  if (samples < 2) throw std::invalid_argument("BladeCut: expected at least 2 samples along the edge");
+  if (!(quad_length >= 0.0) || !std::isfinite(quad_length)) throw std::invalid_argument("BladeCut: expected a quad length >= 0");
+  quad_length_ = quad_length > 0.0 ? quad_length : 0.25 * mean_edge_length(mesh, crossing_);
+  grown_.setEmpty();
+}
+
+bool BladeCut::advance(const CutXfemModel& model, const PointLocator& locator, const Eigen::VectorXd& u, const BladeEdge* world, bool last) {
+  if (!world) {
+    sheet_open_ = false;
+    outside_edge_.reset();
+    return false;
+  }
+  const ReferenceBlade blade = pull_back_blade_edge(model, locator, u, *world, samples_, sheet_open_ ? &last_blade_ : nullptr, 1e-9);
+  std::vector<SweptTriangle> added;
+  if (!blade.in_tissue()) {
+    if (sheet_open_) {
+      const BladeEdge closing{last_blade_.anchor.map(world->start), last_blade_.anchor.map(world->end)};
+      added = sheets_.back().offer(closing, true);
+      sheet_open_ = false;
+    }
+    outside_edge_ = *world;
+  } else {
+    if (!sheet_open_) {
+      sheets_.emplace_back(quad_length_);
+      const BladeEdge before = outside_edge_ ? *outside_edge_ : *world;
+      sheets_.back().offer({blade.anchor.map(before.start), blade.anchor.map(before.end)});
+      sheet_open_ = true;
+    }
+    added = sheets_.back().offer(blade.edge, last);
+    last_blade_ = blade;
+  }
+  if (added.empty()) return false;
+  for (const SweptTriangle& triangle : added)
+    for (const Eigen::Vector3d& corner : triangle) grown_.extend(corner);
+  return !crossing_.add_swept_triangles(added).empty();
+}
+
+std::vector<TriangleSurface> BladeCut::surfaces() const {
+  std::vector<TriangleSurface> surfaces;
+  for (const CutSheet& sheet : sheets_)
+    if (sheet.num_triangles() > 0) surfaces.push_back(sheet.surface());
+  return surfaces;
+}
+
+Eigen::AlignedBox3d BladeCut::take_grown_box() {
+  const Eigen::AlignedBox3d box = grown_;
+  grown_.setEmpty();
+  return box;
+}
+
+} // namespace kerf
