@@ -63,6 +63,8 @@
 #include "kerf/mesh/read_surface.hpp"
 #include "kerf/mesh/tet_neighbours.hpp"
 #include "kerf/mesh/tet_quality.hpp"
+#include "kerf/io/events_csv.hpp"
+#include "kerf/render/cutting_window.hpp"
 #include "kerf/render/organ_view.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_crack_tip.hpp"
@@ -82,13 +84,7 @@
 #include "kerf/xfem/surface_enrichment.hpp"
 #include "kerf/xfem/visual_surface.hpp"
 
-#include <vtkCallbackCommand.h>
-#include <vtkCamera.h>
-#include <vtkCellPicker.h>
-#include <vtkNew.h>
 #include <vtkRenderWindow.h>
-#include <vtkRenderWindowInteractor.h>
-#include <vtkRenderer.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -152,53 +148,6 @@ struct StepTimes {
   double render = 0.0;   // moving the visual surface and drawing a frame
   double output = 0.0;   // writing files
 };
-
-// @sect3{A script of mouse events}
-//
-// The interactive mode's test plays these into the window: `step,event,x,y,shift` with event
-// press, move, release (the left button) or key_q, x and y in pixels from the window's lower
-// left corner, shift 0 or 1; rows in increasing step.
-struct ScriptedEvent {
-  int step = 0;
-  std::string event;
-  int x = 0, y = 0;
-  bool shift = false;
-};
-
-std::vector<ScriptedEvent> read_events_csv(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw kerf::InputError(file.string(), "file", "cannot open the events file");
-  std::string line;
-  if (!std::getline(in, line) || line.rfind("step,event,x,y,shift", 0) != 0)
-    throw kerf::InputError(file.string(), "header", "expected the header step,event,x,y,shift");
-  std::vector<ScriptedEvent> events;
-  for (int row = 2; std::getline(in, line); ++row) {
-    if (line.empty()) continue;
-    std::istringstream fields(line);
-    ScriptedEvent e;
-    std::string step, x, y, shift;
-    std::getline(fields, step, ',');
-    std::getline(fields, e.event, ',');
-    std::getline(fields, x, ',');
-    std::getline(fields, y, ',');
-    std::getline(fields, shift);
-    const std::string where = "row " + std::to_string(row);
-    try {
-      e.step = std::stoi(step);
-      e.x = std::stoi(x);
-      e.y = std::stoi(y);
-      e.shift = std::stoi(shift) != 0;
-    } catch (const std::exception&) {
-      throw kerf::InputError(file.string(), where, "expected integers for step, x, y and shift");
-    }
-    if (e.event != "press" && e.event != "move" && e.event != "release" && e.event != "key_q")
-      throw kerf::InputError(file.string(), where + ".event", "expected press, move, release or key_q, got \"" + e.event + "\"");
-    if (e.step < 1 || (!events.empty() && e.step < events.back().step))
-      throw kerf::InputError(file.string(), where + ".step", "expected steps from 1 on, in increasing order");
-    events.push_back(e);
-  }
-  return events;
-}
 
 // What a change of topology spends its time on (rebuilds.csv), stage by stage.
 struct RebuildTimes {
@@ -871,11 +820,9 @@ void LiverCut::run() {
 
 // @sect4{LiverCut::run_interactive}
 //
-// The same steps in a window: a VTK timer fires every dt, and the blade is the mouse. While the
-// left button is held, the edge stands along the view direction through the point under the
-// cursor: from 3 cm in front of the organ's surface to the scene's blade depth behind it (the
-// first keyframe's edge length), so the cut follows the cursor across the picture. Elsewhere the
-// camera turns with the mouse as in any VTK window. Each step prints its time.
+// The same steps in a window: a VTK timer fires every dt, and the blade is the mouse
+// (render/cutting_window.hpp): its edge reaches the scene's blade depth (the first keyframe's edge
+// length) behind the point under the cursor. Each step prints its time.
 void LiverCut::run_interactive() {
   make_mesh();
   setup_blade();
@@ -888,50 +835,15 @@ void LiverCut::run_interactive() {
   timings_csv_ << "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n";
   energy_scale_ = 1e-12;
 
-  // The interactor alone, without one of VTK's interactor styles: their module (InteractionStyle)
-  // would bring MPI's C bindings into the build with Debian's VTK 9.1 (CMakeLists.txt). The two
-  // things a style would do, turn the camera and close on q, are a few lines below.
-  vtkRenderWindowInteractor* interactor = vtkRenderWindowInteractor::New();
-  interactor->SetRenderWindow(&view_->window());
-  interactor->SetInteractorStyle(nullptr);
-  interactor->Initialize();
-  struct Mouse {
-    bool cutting = false, turning = false;
-    int x = 0, y = 0;
-  } mouse;
+  // The window (render/cutting_window.hpp): Shift + left drag is the blade, a drag alone turns
+  // the camera, q closes.
+  kerf::CuttingWindow window(*view_, depth);
   int step = 0;
-  vtkNew<vtkCellPicker> picker;
-  picker->SetTolerance(0.0005);
-  // The mouse: the left button with Shift held cuts; without Shift it turns the camera.
-  const auto on_event = [&](unsigned long event) {
-    int x = 0, y = 0;
-    interactor->GetEventPosition(x, y);
-    if (event == vtkCommand::LeftButtonPressEvent) (interactor->GetShiftKey() ? mouse.cutting : mouse.turning) = true;
-    if (event == vtkCommand::LeftButtonReleaseEvent) mouse.cutting = mouse.turning = false;
-    if (event == vtkCommand::MouseMoveEvent && mouse.turning) {
-      vtkCamera* camera = view_->renderer().GetActiveCamera();
-      camera->Azimuth(-0.4 * (x - mouse.x));
-      camera->Elevation(-0.4 * (y - mouse.y));
-      camera->OrthogonalizeViewUp();
-      view_->renderer().ResetCameraClippingRange();
-    }
-    if (event == vtkCommand::KeyPressEvent && interactor->GetKeyCode() == 'q') interactor->TerminateApp();
-    mouse.x = x;
-    mouse.y = y;
-  };
   const auto on_timer = [&] {
     ++step;
     // The blade: along the view direction through the point under the cursor while Shift and
     // the button are held over the organ; away otherwise.
-    std::optional<kerf::BladeEdge> edge;
-    if (mouse.cutting && picker->Pick(mouse.x, mouse.y, 0.0, &view_->renderer())) {
-      double picked[3], camera[3];
-      picker->GetPickPosition(picked);
-      view_->renderer().GetActiveCamera()->GetPosition(camera);
-      const Eigen::Vector3d p(picked[0], picked[1], picked[2]), c(camera[0], camera[1], camera[2]);
-      const Eigen::Vector3d d = (p - c).normalized();
-      edge = kerf::BladeEdge{p - 0.03 * d, p + depth * d};
-    }
+    const std::optional<kerf::BladeEdge> edge = window.blade();
     if (edge && !path_) path_ = std::make_unique<kerf::BladePath>(std::vector<kerf::BladeKeyframe>{{0.0, *edge}, {1.0, *edge}});
     const auto start = std::chrono::steady_clock::now();
     // The edge under the cursor now is the blade of the next step: it cuts the body as this step
@@ -947,44 +859,24 @@ void LiverCut::run_interactive() {
     std::fflush(stdout);
     output_step(step);
   };
-  std::function<void(unsigned long)> event_handler = on_event;
-  std::function<void()> timer_handler = on_timer;
-  vtkNew<vtkCallbackCommand> events, timer;
-  events->SetClientData(&event_handler);
-  events->SetCallback([](vtkObject*, unsigned long id, void* data, void*) { (*static_cast<std::function<void(unsigned long)>*>(data))(id); });
-  timer->SetClientData(&timer_handler);
-  timer->SetCallback([](vtkObject*, unsigned long, void* data, void*) { (*static_cast<std::function<void()>*>(data))(); });
-  for (unsigned long id : {vtkCommand::LeftButtonPressEvent, vtkCommand::LeftButtonReleaseEvent, vtkCommand::MouseMoveEvent,
-                           vtkCommand::KeyPressEvent})
-    interactor->AddObserver(id, events, 1.0);
-  interactor->AddObserver(vtkCommand::TimerEvent, timer);
-  interactor->CreateRepeatingTimer(static_cast<unsigned long>(std::max(1.0, 1e3 * scene_.time.dt)));
   view_->window().Render();
   if (!options_.events) {
     report("interactive: hold Shift and drag with the left button to cut; drag without Shift to turn; q closes the window");
-    interactor->Start();
+    window.run(static_cast<int>(std::max(1.0, 1e3 * scene_.time.dt)), on_timer);
   } else {
-    // A script instead of a hand (the test of this mode): each row is an event that the
-    // interactor receives before the timer of its step fires, as the window system would deliver
-    // it; the run ends after the script's last step.
-    const std::vector<ScriptedEvent> script = read_events_csv(*options_.events);
+    // A script instead of a hand (the test of this mode): each row is an event that the window
+    // receives before the timer of its step fires, as the window system would deliver it; the
+    // run ends after the script's last step.
+    const std::vector<kerf::ScriptedEvent> script = kerf::read_events_csv(*options_.events, kerf::EventClock::step);
     std::size_t next = 0;
-    const int last = script.empty() ? 0 : script.back().step;
+    const int last = script.empty() ? 0 : static_cast<int>(script.back().at);
     for (int tick = 1; tick <= last; ++tick) {
-      for (; next < script.size() && script[next].step == tick; ++next) {
-        const ScriptedEvent& e = script[next];
-        interactor->SetEventInformation(e.x, e.y, 0, e.shift ? 1 : 0, e.event == "key_q" ? 'q' : 0);
-        interactor->InvokeEvent(e.event == "press"     ? vtkCommand::LeftButtonPressEvent
-                                : e.event == "release" ? vtkCommand::LeftButtonReleaseEvent
-                                : e.event == "move"    ? vtkCommand::MouseMoveEvent
-                                                       : vtkCommand::KeyPressEvent);
-      }
-      interactor->InvokeEvent(vtkCommand::TimerEvent);
+      for (; next < script.size() && script[next].at == tick; ++next) window.deliver(script[next]);
+      on_timer();
     }
     report("played " + std::to_string(script.size()) + " events over " + std::to_string(last) + " steps; " +
            std::to_string(blade_cut_->crossing().crossed_tets().size()) + " tets cut");
   }
-  interactor->Delete();
 }
 
 } // namespace chapter07

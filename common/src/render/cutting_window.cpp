@@ -1,0 +1,105 @@
+#include "kerf/render/cutting_window.hpp"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCellPicker.h>
+#include <vtkCommand.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+
+#include <Eigen/Core>
+
+namespace kerf {
+
+struct CuttingWindow::Data {
+  OrganView& view;
+  double depth;
+  vtkRenderWindowInteractor* interactor = nullptr;
+  vtkNew<vtkCellPicker> picker;
+  vtkNew<vtkCallbackCommand> events, timer;
+  bool cutting = false, turning = false, closed = false;
+  int x = 0, y = 0;
+  std::function<void()> tick;
+
+  Data(OrganView& v, double d) : view(v), depth(d) {}
+
+  // The mouse: the left button with Shift held cuts; without Shift it turns the camera.
+  void on_event(unsigned long event) {
+    int ex = 0, ey = 0;
+    interactor->GetEventPosition(ex, ey);
+    if (event == vtkCommand::LeftButtonPressEvent) (interactor->GetShiftKey() ? cutting : turning) = true;
+    if (event == vtkCommand::LeftButtonReleaseEvent) cutting = turning = false;
+    if (event == vtkCommand::MouseMoveEvent && turning) {
+      vtkCamera* camera = view.renderer().GetActiveCamera();
+      camera->Azimuth(-0.4 * (ex - x));
+      camera->Elevation(-0.4 * (ey - y));
+      camera->OrthogonalizeViewUp();
+      view.renderer().ResetCameraClippingRange();
+    }
+    if (event == vtkCommand::KeyPressEvent && interactor->GetKeyCode() == 'q') {
+      closed = true;
+      interactor->TerminateApp();
+    }
+    x = ex;
+    y = ey;
+  }
+};
+
+CuttingWindow::CuttingWindow(OrganView& view, double blade_depth) : data_(std::make_unique<Data>(view, blade_depth)) {
+  Data& d = *data_;
+  d.interactor = vtkRenderWindowInteractor::New();
+  d.interactor->SetRenderWindow(&view.window());
+  d.interactor->SetInteractorStyle(nullptr);
+  d.interactor->Initialize();
+  d.picker->SetTolerance(0.0005);
+  d.events->SetClientData(&d);
+  d.events->SetCallback([](vtkObject*, unsigned long id, void* data, void*) { static_cast<Data*>(data)->on_event(id); });
+  for (unsigned long id : {vtkCommand::LeftButtonPressEvent, vtkCommand::LeftButtonReleaseEvent, vtkCommand::MouseMoveEvent,
+                           vtkCommand::KeyPressEvent})
+    d.interactor->AddObserver(id, d.events, 1.0);
+  d.timer->SetClientData(&d);
+  d.timer->SetCallback([](vtkObject*, unsigned long, void* data, void*) {
+    Data& self = *static_cast<Data*>(data);
+    if (self.tick) self.tick();
+  });
+  d.interactor->AddObserver(vtkCommand::TimerEvent, d.timer);
+}
+
+CuttingWindow::~CuttingWindow() { data_->interactor->Delete(); }
+
+std::optional<BladeEdge> CuttingWindow::blade() {
+  Data& d = *data_;
+  if (!d.cutting || !d.picker->Pick(d.x, d.y, 0.0, &d.view.renderer())) return std::nullopt;
+  double picked[3], camera[3];
+  d.picker->GetPickPosition(picked);
+  d.view.renderer().GetActiveCamera()->GetPosition(camera);
+  const Eigen::Vector3d p(picked[0], picked[1], picked[2]), c(camera[0], camera[1], camera[2]);
+  const Eigen::Vector3d direction = (p - c).normalized();
+  return BladeEdge{p - 0.03 * direction, p + d.depth * direction};
+}
+
+bool CuttingWindow::cutting() const { return data_->cutting; }
+
+bool CuttingWindow::closed() const { return data_->closed; }
+
+void CuttingWindow::deliver(const ScriptedEvent& e) {
+  vtkRenderWindowInteractor& interactor = *data_->interactor;
+  interactor.SetEventInformation(e.x, e.y, 0, e.shift ? 1 : 0, e.event == WindowEvent::key_q ? 'q' : 0);
+  switch (e.event) {
+  case WindowEvent::press: interactor.InvokeEvent(vtkCommand::LeftButtonPressEvent); break;
+  case WindowEvent::release: interactor.InvokeEvent(vtkCommand::LeftButtonReleaseEvent); break;
+  case WindowEvent::move: interactor.InvokeEvent(vtkCommand::MouseMoveEvent); break;
+  case WindowEvent::key_q: interactor.InvokeEvent(vtkCommand::KeyPressEvent); break;
+  }
+}
+
+void CuttingWindow::run(int tick_ms, const std::function<void()>& tick) {
+  data_->tick = tick;
+  data_->interactor->CreateRepeatingTimer(static_cast<unsigned long>(std::max(1, tick_ms)));
+  data_->interactor->Start();
+  data_->tick = nullptr;
+}
+
+} // namespace kerf
