@@ -96,13 +96,14 @@ jobs=$(nproc)
 case "${1:-demo}" in
   demo)
     install_missing_packages
-    configure_and_build release --target 07_liver -j "$jobs"
-    # The flagship, chapter 7: its frames are drawn through X, so without a display xvfb-run
-    # lends one.
+    configure_and_build release --target 08_real_time -j "$jobs"
+    # The flagship, chapter 8: the cut in real time. Its frames are drawn through X, so without
+    # a display xvfb-run lends one; with a display the window follows, in which the mouse cuts.
     if [ -n "${DISPLAY:-}" ]; then
-      ./build/release/bin/07_liver --out output/07_liver
+      ./build/release/bin/08_real_time --out output/08_real_time
+      ./build/release/bin/08_real_time --interactive --out output/08_real_time_window
     else
-      xvfb-run -a ./build/release/bin/07_liver --out output/07_liver
+      xvfb-run -a ./build/release/bin/08_real_time --out output/08_real_time
     fi
     ;;
   test)

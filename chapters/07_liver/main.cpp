@@ -43,7 +43,9 @@
 // New since chapter 6: the liver, the blade and its cut, the transfer of the state, and the
 // render area (which needs a display, so chapters 1-6 do not link it).
 #include "kerf/app/command_line.hpp"
+#include "kerf/app/cut_run_log.hpp"
 #include "kerf/app/input_error.hpp"
+#include "kerf/app/organ.hpp"
 #include "kerf/cut/blade_path.hpp"
 #include "kerf/cut/cut_sheet.hpp"
 #include "kerf/cut/cut_surfaces.hpp"
@@ -197,11 +199,7 @@ private:
 
   kerf::Scene scene_;
   kerf::CommandLine options_;
-  kerf::TetMesh mesh_;
-  kerf::BoundaryFaces boundary_;
-  std::shared_ptr<const kerf::TetNeighbours> neighbours_;
-  std::unique_ptr<kerf::PointLocator> locator_;
-  std::vector<kerf::DirichletNodes> held_;
+  std::unique_ptr<kerf::Organ> organ_; // the mesh and what every model of its cut shares
 
   // The cut as it grows (xfem/blade_cut.hpp): the blade's path, the sheets it has left and the
   // tets they have crossed.
@@ -244,50 +242,19 @@ private:
   // Output along the run.
   StepTimes step_times_, total_times_;
   double max_step_seconds_ = 0.0, max_topology_step_seconds_ = 0.0;
-  Eigen::MatrixXd probe_points_;
-  std::ofstream energy_csv_, history_csv_, timings_csv_, cuts_csv_, rebuilds_csv_, opening_csv_;
-  double opening_spacing_ = 0.0; // the distance between the points the opening is sampled at: half a mean edge (m)
-  std::unique_ptr<kerf::CutOpeningSampler> opening_sampler_; // of the current model; made by output_step
+  std::unique_ptr<kerf::CutRunLog> log_; // energy.csv, opening.csv, the probes' history, the .pvd series (the batch run's)
+  std::ofstream timings_csv_, cuts_csv_, rebuilds_csv_;
   RebuildTimes rebuild_times_;
-  double mesh_volume_ = 0.0; // the uncut mesh's, sum of |det J| / 6
-  std::vector<std::pair<double, std::filesystem::path>> frames_;
 };
 
 // @sect4{LiverCut::make_mesh}
 //
 // The scene's mesh (the liver by default, made by Mesh_3 with the size --tets asks for), its
-// quality, and the structures every rebuild of the cut shares: the face and node adjacency and a
-// point locator of the reference mesh.
+// quality, and the structures every rebuild of the cut shares (app/organ.hpp): the face and
+// node adjacency and a point locator of the reference mesh.
 void LiverCut::make_mesh() {
-  if (options_.tets) {
-    if (!scene_.mesh.is_liver) throw kerf::InputError("command line", "--tets", "only for a scene whose mesh is the \"liver\"");
-    if (*options_.tets < kerf::liver_min_tets || *options_.tets > kerf::liver_max_tets)
-      throw kerf::InputError("command line", "--tets",
-                             "expected a number of tets in [" + std::to_string(kerf::liver_min_tets) + ", " +
-                                 std::to_string(kerf::liver_max_tets) + "]");
-    scene_.mesh.liver_tets = *options_.tets;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  mesh_ = kerf::make_scene_mesh(scene_, &std::cerr);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  boundary_ = kerf::boundary_faces(mesh_);
-  neighbours_ = std::make_shared<const kerf::TetNeighbours>(kerf::tet_neighbours(mesh_));
-  locator_ = std::make_unique<kerf::PointLocator>(mesh_);
-  const kerf::TetQualitySummary quality = kerf::tet_quality_summary(mesh_);
-  std::ostringstream line;
-  line.precision(3);
-  line << "mesh: " << mesh_.num_nodes() << " nodes, " << mesh_.num_tets() << (mesh_.order() == 1 ? " Tet4" : " Tet10")
-       << (scene_.mesh.is_liver ? " (Mesh_3, " : " (read, ") << seconds << " s); quality: min dihedral angle "
-       << quality.min_dihedral_angle << " deg, min radius ratio " << quality.min_radius_ratio << "; model " << scene_.model;
-  report(line.str());
-  held_ = kerf::scene_held_nodes(scene_, mesh_, &std::cerr);
-  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t) {
-    const Eigen::Matrix<double, 4, 3> X = kerf::tet_corners(mesh_, t);
-    mesh_volume_ += std::abs((X.row(1) - X.row(0)).dot((X.row(2) - X.row(0)).cross(X.row(3) - X.row(0)))) / 6.0;
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) opening_spacing_ += (X.row(a) - X.row(b)).norm();
-  }
-  opening_spacing_ /= 2.0 * 6.0 * static_cast<double>(mesh_.num_tets());
+  organ_ = std::make_unique<kerf::Organ>(scene_, options_.tets, &std::cerr);
+  report(organ_->summary);
 }
 
 // @sect4{LiverCut::setup_blade}
@@ -296,7 +263,7 @@ void LiverCut::make_mesh() {
 // scene's, or a quarter of the mesh's mean edge (blade_cut.hpp); 2 mm for the mouse of a scene
 // without a blade.
 void LiverCut::setup_blade() {
-  blade_cut_ = std::make_unique<kerf::BladeCut>(mesh_, scene_.blade.given ? scene_.blade.quad_length : 0.002, scene_.blade.samples);
+  blade_cut_ = std::make_unique<kerf::BladeCut>(organ_->mesh, scene_.blade.given ? scene_.blade.quad_length : 0.002, scene_.blade.samples);
   if (!scene_.blade.given) return;
   path_ = std::make_unique<kerf::BladePath>(scene_.blade.path);
   std::ostringstream line;
@@ -313,26 +280,13 @@ void LiverCut::setup_blade() {
 // for a mesh read from a file, the scene's render.surface (SOFA's liver comes with a smooth one),
 // or else the mesh's own boundary. Embedded once in the reference tets.
 void LiverCut::setup_visual(bool need_view, bool on_screen) {
-  kerf::TriangleSurface surface;
-  if (!scene_.render.surface.empty()) {
-    surface = kerf::read_surface(scene_.render.surface, scene_.render.surface_scale, &std::cerr);
-  } else if (scene_.mesh.is_liver) {
-    surface = kerf::implicit_surface_mesh(kerf::liver_phi, kerf::liver_centre(), kerf::liver_bounding_radius(),
-                                          kerf::implicit_surface_sizing(scene_.render.visual_size));
-  } else {
-    surface = kerf::boundary_surface(mesh_);
-  }
-  visual_ = std::make_unique<kerf::VisualSurface>(mesh_, surface);
+  const kerf::TriangleSurface surface = kerf::scene_visual_surface(scene_, organ_->mesh);
+  visual_ = std::make_unique<kerf::VisualSurface>(organ_->mesh, surface);
   report("visual surface: " + std::to_string(surface.num_triangles()) + " triangles (" +
-         std::to_string(static_cast<double>(surface.num_triangles()) / boundary_.faces.rows()).substr(0, 4) +
+         std::to_string(static_cast<double>(surface.num_triangles()) / organ_->boundary.faces.rows()).substr(0, 4) +
          " times the tet mesh's boundary)");
   if (!need_view) return;
-  kerf::OrganViewSettings settings;
-  settings.width = scene_.render.width;
-  settings.height = scene_.render.height;
-  settings.camera = {.azimuth = scene_.render.azimuth, .elevation = scene_.render.elevation, .zoom = scene_.render.zoom};
-  settings.on_screen = on_screen;
-  view_ = std::make_unique<kerf::OrganView>(surface, settings);
+  view_ = std::make_unique<kerf::OrganView>(surface, kerf::organ_view_settings(scene_.render, on_screen));
 }
 
 // @sect4{LiverCut::apply_cut}
@@ -361,26 +315,26 @@ void LiverCut::apply_cut() {
   auto cuts = std::make_unique<kerf::CutSurfaces>(blade_cut_->surfaces());
   // Only the tets near the quads added since the last rebuild can have new pieces: the others
   // keep theirs (recut_mesh_into_pieces).
-  auto pieces = std::make_unique<kerf::MeshPieces>(pieces_ ? kerf::recut_mesh_into_pieces(mesh_, *cuts, *pieces_, blade_cut_->take_grown_box())
-                                                           : kerf::cut_mesh_into_pieces(mesh_, *cuts, neighbours_));
+  auto pieces = std::make_unique<kerf::MeshPieces>(pieces_ ? kerf::recut_mesh_into_pieces(organ_->mesh, *cuts, *pieces_, blade_cut_->take_grown_box())
+                                                           : kerf::cut_mesh_into_pieces(organ_->mesh, *cuts, organ_->neighbours));
   rebuild_times_.pieces = lap();
   std::unique_ptr<kerf::SceneCrackTip> crack_tip;
   std::unique_ptr<kerf::SurfaceEnrichment> enrichment;
-  if (scene_.crack_tip.given) crack_tip = std::make_unique<kerf::SceneCrackTip>(scene_, mesh_, *pieces, *cuts, nullptr);
-  else enrichment = std::make_unique<kerf::SurfaceEnrichment>(kerf::make_surface_enrichment(mesh_, *pieces));
+  if (scene_.crack_tip.given) crack_tip = std::make_unique<kerf::SceneCrackTip>(scene_, organ_->mesh, *pieces, *cuts, nullptr);
+  else enrichment = std::make_unique<kerf::SurfaceEnrichment>(kerf::make_surface_enrichment(organ_->mesh, *pieces));
   rebuild_times_.enrichment = lap();
   // The model integrates anew only the tets recut_mesh_into_pieces cut again (and those with
   // branch functions); every other tet keeps the old model's points.
   const kerf::SurfaceEnrichment& sign = crack_tip ? crack_tip->sign_enrichment() : *enrichment;
   const kerf::CrackTipFunctions* tip = crack_tip ? crack_tip->tip_functions() : nullptr;
   auto model = model_ ? std::make_unique<kerf::CutXfemModel>(*model_, *pieces, sign, tip)
-                      : std::make_unique<kerf::CutXfemModel>(mesh_, scene_.material, *pieces, sign, rule_, tip);
+                      : std::make_unique<kerf::CutXfemModel>(organ_->mesh, scene_.material, *pieces, sign, rule_, tip);
   // Several passes of the blade beside the held back carve out fragments that the clamp's hold
   // of an enrichment (or Koschier et al.'s eq. 22) pins at one node or along one line: a pendulum
   // that swings faster than a frozen step can follow, whose energy then grows by 1 + theta^2 a
   // step, and that no tissue holds. Such a fragment is let go, free as any piece the cut frees
   // (xfem/hinged_fragments.hpp).
-  kerf::DofMap dofs = kerf::release_hinged_fragments(*model, kerf::make_cut_xfem_dof_map(*model, held_));
+  kerf::DofMap dofs = kerf::release_hinged_fragments(*model, kerf::make_cut_xfem_dof_map(*model, organ_->held));
   rebuild_times_.model = lap();
   const bool rebuild = model_ != nullptr;
   if (model_) {
@@ -391,7 +345,7 @@ void LiverCut::apply_cut() {
   }
   // The old model is gone only now: the transfer read it. Then what it referred to, and the
   // opening's sample points, which were found in the old pieces.
-  opening_sampler_.reset();
+  if (log_) log_->model_changed();
   assembled_.valid = false; // of the old model
   model_ = std::move(model);
   dofs_ = std::move(dofs);
@@ -419,12 +373,12 @@ void LiverCut::apply_cut() {
     const kerf::EnergyAccount after = newmark_->start_account(state_);
     const auto start = std::chrono::steady_clock::now();
     double volume = 0.0;
-    for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t)
+    for (Eigen::Index t = 0; t < organ_->mesh.num_tets(); ++t)
       for (int p = 0; p < model_->num_integrated_pieces(t); ++p) volume += model_->integrated_volume(t, p);
     char row[512];
     std::snprintf(row, sizeof row, "%d,%.17g,%d,%ld,%ld,%.6e,%.6e,%.17g,%.17g,%.17g,%.17g\n", topology_changes_ + 1, state_.t,
                   static_cast<int>(blade_cut_->crossing().crossed_tets().size()), static_cast<long>(this->enrichment().num_enrichments()),
-                  static_cast<long>(dofs_.num_free), volume / mesh_volume_ - 1.0, body_mass_ / (scene_.material.density * mesh_volume_) - 1.0,
+                  static_cast<long>(dofs_.num_free), volume / organ_->volume - 1.0, body_mass_ / (scene_.material.density * organ_->volume) - 1.0,
                   kinetic_before, after.kinetic, elastic_before, after.elastic);
     cuts_csv_ << row;
     step_times_.output += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -453,10 +407,10 @@ void LiverCut::setup_system() {
   // a second pass over every piece's rule. Eqs. 81-82 and tractions take the library's path.
   Eigen::VectorXd f;
   if (scene_.time.mass == "schoch_eq_81_82" || !scene_.traction.empty()) {
-    f = kerf::scene_cut_xfem_dynamic_loads(scene_, *model_, boundary_, rule_);
+    f = kerf::scene_cut_xfem_dynamic_loads(scene_, *model_, organ_->boundary, rule_);
   } else {
     Eigen::VectorXd e_g = Eigen::VectorXd::Zero(M.rows());
-    for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e_g.segment<3>(3 * v) = scene_.gravity;
+    for (Eigen::Index v = 0; v < organ_->mesh.num_nodes(); ++v) e_g.segment<3>(3 * v) = scene_.gravity;
     f = M * e_g;
   }
   rebuild_times_.loads = lap();
@@ -464,7 +418,7 @@ void LiverCut::setup_system() {
   // walked (sparse_assembler.hpp).
   const kerf::DofMap all_free = kerf::make_dof_map(model_->num_dof_nodes(), {});
   tangent_assembler_ = tangent_assembler_ ? std::make_unique<kerf::SparseAssembler>(*tangent_assembler_, model_->assembly_slots(), all_free,
-                                                                                    mesh_.nodes_per_tet())
+                                                                                    organ_->mesh.nodes_per_tet())
                                           : std::make_unique<kerf::SparseAssembler>(model_->assembly_slots(), all_free);
   rebuild_times_.pattern = lap();
   const bool corotated = scene_.model == "corotational";
@@ -533,7 +487,7 @@ void LiverCut::setup_system() {
     account_ = newmark_->start_account(state_);
   }
   Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
-  for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e[3 * v] = 1.0;
+  for (Eigen::Index v = 0; v < organ_->mesh.num_nodes(); ++v) e[3 * v] = 1.0;
   body_mass_ = e.dot(system_.M * e);
   rebuild_times_.integrator = lap() - (step_times_.assemble - assembled_before);
 }
@@ -570,7 +524,7 @@ void LiverCut::check_state(int step) const { kerf::check_bounded_state(state_, a
 void LiverCut::cut(const kerf::BladeEdge* blade, bool blade_done) {
   using clock = std::chrono::steady_clock;
   auto start = clock::now();
-  const bool crossed = path_ && blade_cut_->advance(*model_, *locator_, state_.u, blade, blade_done);
+  const bool crossed = path_ && blade_cut_->advance(*model_, *organ_->locator, state_.u, blade, blade_done);
   step_times_.blade += std::chrono::duration<double>(clock::now() - start).count();
   if (!crossed) return;
   start = clock::now();
@@ -642,36 +596,13 @@ void LiverCut::draw(int step) {
 
 // @sect4{LiverCut::output_step}
 //
-// energy.csv, timings.csv and the probes' history every step; the pieces into the .pvd series
-// every output.every steps; a frame every render.every steps.
+// energy.csv, opening.csv (how far the wound has opened), timings.csv and the probes' history
+// every step; the pieces into the .pvd series every output.every steps (app/cut_run_log.hpp); a
+// frame every render.every steps.
 void LiverCut::output_step(int step) {
   const auto start = std::chrono::steady_clock::now();
   char row[512];
-  kerf::write_energy_row(energy_csv_, step, state_.t, account_);
-  if (history_csv_.is_open()) {
-    Eigen::Index outside = 0;
-    const kerf::TetField field = [this](Eigen::Index t, const Eigen::Vector3d& x) { return model_->displacement_at(state_.u, t, x); };
-    const Eigen::MatrixXd values = kerf::evaluate_tet_field_at(mesh_, field, probe_points_, outside);
-    kerf::write_probe_history_rows(history_csv_, step, state_.t, values);
-    if (step == 0 && outside > 0) std::cerr << "warning: " << outside << " probes lie outside the mesh; their history is nan\n";
-  }
-  // How far the wound has opened (xfem/cut_opening.hpp): the jump across the cut, sampled every
-  // half edge, from points 1e-6 of an edge either side of it. Where the points lie is found once
-  // per change of topology (apply_cut drops the sampler), the jump at every step.
-  if (!opening_sampler_)
-    opening_sampler_ = std::make_unique<kerf::CutOpeningSampler>(*model_, *locator_, cuts_->surfaces(), opening_spacing_, 2e-6 * opening_spacing_);
-  const kerf::CutOpening opening = opening_sampler_->measure(state_.u);
-  std::snprintf(row, sizeof row, "%d,%.17g,%.9e,%.9e,%.9e,%.9e,%.9e\n", step, state_.t, opening.area, opening.gap_volume,
-                opening.mean_opening(), opening.max_normal_opening, opening.max_jump);
-  opening_csv_ << row;
-  if (step % scene_.output_every == 0 || step == scene_.time.steps) {
-    char name[64];
-    std::snprintf(name, sizeof name, "_pieces_%06d.vtu", step);
-    const std::filesystem::path frame = options_.out_dir / (scene_.name + name);
-    kerf::write_cut_xfem_vtu(frame, *model_, state_.u);
-    frames_.emplace_back(state_.t, frame);
-    kerf::write_pvd(options_.out_dir / (scene_.name + "_pieces.pvd"), frames_);
-  }
+  if (log_) log_->write(step, state_.t, *model_, *cuts_, state_.u, account_);
   step_times_.output += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (view_ && scene_.render.every > 0 && (step % scene_.render.every == 0 || step == scene_.time.steps)) draw(step);
   std::snprintf(row, sizeof row, "%d,%.17g,%ld,%d,%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n", step, state_.t, static_cast<long>(dofs_.num_free),
@@ -685,25 +616,16 @@ void LiverCut::output_step(int step) {
 // The probes where the run ended, the animation, and the run's account.
 void LiverCut::output_results() {
   if (options_.moments_out) {
-    kerf::write_piece_moments_csv(*options_.moments_out, mesh_, *pieces_, rule_);
+    kerf::write_piece_moments_csv(*options_.moments_out, organ_->mesh, *pieces_, rule_);
     report("wrote " + options_.moments_out->string());
   }
   if (options_.probes_out) {
     kerf::sample_cut_xfem_probes(*options_.probes_in, *options_.probes_out, *model_, state_.u, &std::cerr);
     report("wrote " + options_.probes_out->string());
   }
-  report("wrote " + (options_.out_dir / (scene_.name + "_pieces.pvd")).string() + " (" + std::to_string(frames_.size()) +
+  report("wrote " + log_->pvd().string() + " (" + std::to_string(log_->num_frames()) +
          " frames), energy.csv, opening.csv and timings.csv in " + options_.out_dir.string());
-  if (!png_frames_.empty()) {
-    report("wrote " + std::to_string(png_frames_.size()) + " PNG frames in " + (options_.out_dir / "frames").string());
-    if (scene_.render.animation) {
-      const std::filesystem::path film = options_.out_dir / (scene_.name + ".png");
-      // Played at the simulation's pace: a frame every render.every steps of dt.
-      const int delay = std::clamp(static_cast<int>(std::lround(1000.0 * scene_.render.every * scene_.time.dt)), 1, 65535);
-      kerf::write_animated_png(png_frames_, film, delay);
-      report("wrote " + film.string() + " (animated PNG, " + std::to_string(png_frames_.size()) + " frames)");
-    }
-  }
+  for (const std::string& line : kerf::write_run_animation(png_frames_, scene_, options_.out_dir)) report(line);
 }
 
 // @sect4{LiverCut::run}
@@ -717,38 +639,23 @@ void LiverCut::run() {
   make_mesh();
   setup_blade();
   setup_visual(scene_.render.every > 0, false);
-  rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
+  rule_ = kerf::scene_piece_rule(scene_, organ_->mesh.order());
   apply_cut();
   report("system: " + std::to_string(dofs_.num_free) + " unknowns before the cut; mass " + std::to_string(body_mass_) + " kg (" +
          scene_.time.mass + ")");
-  if (path_) {
-    // A blade that starts in the tissue would cut from nowhere: its path must begin outside.
-    const kerf::ReferenceBlade first =
-        kerf::pull_back_blade_edge(*model_, *locator_, state_.u, path_->edge_at(0.0), scene_.blade.samples, nullptr, 1e-9);
-    if (first.in_tissue())
-      throw kerf::InputError(scene_.source.string(), "blade.path",
-                             "the blade's edge starts inside the body (" + std::to_string(first.samples_inside) + " of " +
-                                 std::to_string(scene_.blade.samples) + " samples): start it outside, so that the cut opens through the skin");
-  }
+  // A blade that starts in the tissue would cut from nowhere: its path must begin outside.
+  if (path_) kerf::require_blade_starts_outside(*model_, *organ_->locator, *path_, scene_.blade.samples, scene_.source.string());
   report("setup: " + std::to_string(seconds_since(start)) + " s");
 
-  std::filesystem::create_directories(options_.out_dir);
-  const auto open = [](std::ofstream& file, const std::filesystem::path& path, const char* header) {
-    file.open(path);
-    if (!file) throw kerf::InputError(path.string(), "write", "cannot open the file");
-    file << header;
-  };
-  open(energy_csv_, options_.out_dir / "energy.csv", kerf::energy_csv_header);
-  open(cuts_csv_, options_.out_dir / "cuts.csv",
-       "change,t,crossed_tets,enrichments,unknowns,volume_error,mass_error,kinetic_before,kinetic_after,elastic_before,elastic_after\n");
-  open(rebuilds_csv_, options_.out_dir / "rebuilds.csv", "change,pieces_s,enrichment_s,model_s,transfer_s,mass_s,loads_s,pattern_s,integrator_s\n");
-  open(opening_csv_, options_.out_dir / "opening.csv", "step,t,cut_area,gap_volume,mean_opening,max_opening,max_jump\n");
-  open(timings_csv_, options_.out_dir / "timings.csv",
-       "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n");
-  if (options_.probes_history) {
-    probe_points_ = kerf::read_probes_csv(*options_.probes_in);
-    open(history_csv_, *options_.probes_history, "step,t,probe,ux,uy,uz\n");
-  }
+  log_ = std::make_unique<kerf::CutRunLog>(kerf::CutRunLogSettings{options_.out_dir, scene_.name, scene_.output_every, scene_.time.steps,
+                                                                   organ_->mean_edge, options_.probes_in, options_.probes_history},
+                                           *organ_->locator);
+  cuts_csv_ = kerf::open_csv(options_.out_dir / "cuts.csv", "change,t,crossed_tets,enrichments,unknowns,volume_error,mass_error,"
+                                                             "kinetic_before,kinetic_after,elastic_before,elastic_after\n");
+  rebuilds_csv_ = kerf::open_csv(options_.out_dir / "rebuilds.csv",
+                                 "change,pieces_s,enrichment_s,model_s,transfer_s,mass_s,loads_s,pattern_s,integrator_s\n");
+  timings_csv_ = kerf::open_csv(options_.out_dir / "timings.csv",
+                                "step,t,unknowns,crossed_tets,topology_changed,blade_s,topology_s,assemble_s,solve_s,render_s,output_s\n");
   energy_scale_ = account_.kinetic + account_.elastic;
   // The blade cuts the body as the step before left it: the first step's edge here, on the body at
   // rest, each later one at the end of the step before (do_timestep). timings.csv books a cut in
@@ -807,10 +714,7 @@ void LiverCut::run() {
   cut.precision(4);
   cut << "cut: " << blade_cut_->crossing().crossed_tets().size() << " tets crossed, " << topology_changes_ << " topology changes, "
       << blade_cut_->sheets().size() << " sheets of " << (blade_cut_->sheets().empty() ? 0 : blade_cut_->sheets().back().num_triangles())
-      << " triangles, "
-      << enrichment().num_enrichments() << " enrichments; energy: kinetic " << account_.kinetic << " J, elastic " << account_.elastic
-      << " J, work " << account_.external_work << " J, dissipated " << account_.dissipated() << " J = damping " << account_.damping
-      << " J + numerical (the rest of the balance) " << account_.numerical << " J";
+      << " triangles, " << enrichment().num_enrichments() << " enrichments; " << kerf::energy_summary(account_);
   report(cut.str());
   if (unconverged_steps_ > 0)
     std::cerr << "warning: " << scene_.source.string() << ": time.tolerance: the step's iteration missed " << scene_.time.tolerance << " in "
@@ -827,7 +731,7 @@ void LiverCut::run_interactive() {
   make_mesh();
   setup_blade();
   setup_visual(true, true);
-  rule_ = kerf::scene_piece_rule(scene_, mesh_.order());
+  rule_ = kerf::scene_piece_rule(scene_, organ_->mesh.order());
   apply_cut();
   const double depth = path_ ? (path_->keyframes().front().edge.end - path_->keyframes().front().edge.start).norm() : 0.06;
   std::filesystem::create_directories(options_.out_dir);

@@ -8,6 +8,7 @@
 // The livers are small (--tets 2000 or 1000, "render": {"every": 0} where no frame is needed), so
 // that each case takes seconds; the demo's 10 000 tets and 250 frames run as the example scene's
 // test (tests/CMakeLists.txt).
+#include "support/program_checks.hpp"
 #include "support/run_program.hpp"
 
 #include <doctest/doctest.h>
@@ -27,28 +28,15 @@
 
 namespace {
 
+using kerf_test::check_refused;
+using kerf_test::number_after;
+using kerf_test::quoted;
+using kerf_test::with_display;
+using kerf_test::without_style_warning;
 using nlohmann::json;
 
 const std::string chapter_07 = std::string(KERF_BINARY_DIR) + "/bin/07_liver";
 const std::filesystem::path source_dir = KERF_SOURCE_DIR;
-
-// A path in single quotes for the shell. (Built by appending: g++ 12 warns, wrongly, about
-// "'" + path.string() with -Wrestrict.)
-std::string quoted(const std::filesystem::path& path) {
-  std::string text = "'";
-  text += path.string();
-  text += '\'';
-  return text;
-}
-
-// The program under xvfb-run (a display for its window and its frames). The suite itself runs
-// without one; tests/CMakeLists.txt passes the path it found. Without it the case fails, saying
-// so: a window test that skipped itself would let a broken window through.
-std::string with_display(const std::string& command) {
-  const std::string xvfb_run = KERF_XVFB_RUN; // "KERF_XVFB_RUN-NOTFOUND" when CMake found none
-  REQUIRE_MESSAGE(std::filesystem::exists(xvfb_run), "xvfb-run not found: install xvfb, then reconfigure");
-  return xvfb_run + " -a " + command;
-}
 
 json example_scene() { return json::parse(kerf_test::read_text(source_dir / "examples" / "07_liver_cut.json")); }
 
@@ -73,59 +61,6 @@ kerf_test::ProgramResult run_scene(const json& scene, const std::filesystem::pat
   kerf_test::write_text(dir / (name + ".json"), scene.dump(2));
   return kerf_test::run_program(chapter_07 + " --scene " + quoted(dir / (name + ".json")) + " --out " + quoted(dir / name) + more_options,
                                 dir / ("run_" + name));
-}
-
-// The number written after `key` in the program's output (e.g. "cut: " -> the tets crossed).
-double number_after(const std::string& text, const std::string& key) {
-  const std::size_t at = text.find(key);
-  REQUIRE_MESSAGE(at != std::string::npos, "no \"" << key << "\" in the output");
-  return std::stod(text.substr(at + key.size()));
-}
-
-// stderr without the one warning VTK 9.1 writes whenever a window's interactor is made without its
-// InteractionStyle module ("vtkInteractorStyleSwitchBase ... Link to vtkInteractionStyle"), which
-// 07_liver leaves out on purpose (main.cpp, run_interactive): every --interactive run has it.
-std::string without_style_warning(const std::string& err) {
-  std::istringstream lines(err);
-  std::string line, kept;
-  while (std::getline(lines, line))
-    if (line.find("vtkInteractorStyleSwitchBase") == std::string::npos) kept += line + "\n";
-  return kept;
-}
-
-// A failed run's report: exit status 2 (an InputError) and one line on stderr naming `field`.
-void check_refused(const kerf_test::ProgramResult& result, const std::string& field) {
-  INFO("field ", field, "; stderr: ", result.err);
-  CHECK(result.exit_status == 2);
-  CHECK(result.err.find(field) != std::string::npos);
-  CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
-}
-
-// The chunks of a PNG file by type, in order (the 8-byte signature checked).
-std::vector<std::pair<std::string, std::string>> png_chunks(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  REQUIRE(bytes.size() >= 8);
-  REQUIRE(bytes.substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
-  const auto big_endian = [&](std::size_t at) {
-    std::uint32_t value = 0;
-    for (std::size_t k = 0; k < 4; ++k) value = (value << 8) | static_cast<unsigned char>(bytes[at + k]);
-    return value;
-  };
-  std::vector<std::pair<std::string, std::string>> chunks;
-  for (std::size_t at = 8; at + 12 <= bytes.size();) {
-    const std::uint32_t length = big_endian(at);
-    REQUIRE(at + 12 + length <= bytes.size());
-    chunks.emplace_back(bytes.substr(at + 4, 4), bytes.substr(at + 8, length));
-    at += 12 + length;
-  }
-  return chunks;
-}
-
-std::uint32_t big_endian_32(const std::string& data, std::size_t at) {
-  std::uint32_t value = 0;
-  for (std::size_t k = 0; k < 4; ++k) value = (value << 8) | static_cast<unsigned char>(data.at(at + k));
-  return value;
 }
 
 // The columns of cuts.csv.
@@ -519,18 +454,18 @@ TEST_CASE("the frames: a PNG per step and the animated PNG of them") {
   CHECK(result.out.find("wrote 5 PNG frames") != std::string::npos);
   int frames = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir / "out" / "frames")) {
-    const auto chunks = png_chunks(entry.path());
+    const auto chunks = kerf_test::png_chunks(entry.path());
     REQUIRE(chunks.front().first == "IHDR");
-    CHECK(big_endian_32(chunks.front().second, 0) == 160);
-    CHECK(big_endian_32(chunks.front().second, 4) == 120);
+    CHECK(kerf_test::big_endian_32(chunks.front().second, 0) == 160);
+    CHECK(kerf_test::big_endian_32(chunks.front().second, 4) == 120);
     ++frames;
   }
   CHECK(frames == 5);
   // The animation: an acTL chunk (APNG's animation control) with 5 frames, and 5 fcTL chunks.
-  const auto chunks = png_chunks(dir / "out" / "liver_cut.png");
+  const auto chunks = kerf_test::png_chunks(dir / "out" / "liver_cut.png");
   const auto control = std::find_if(chunks.begin(), chunks.end(), [](const auto& c) { return c.first == "acTL"; });
   REQUIRE(control != chunks.end());
-  CHECK(big_endian_32(control->second, 0) == 5);
+  CHECK(kerf_test::big_endian_32(control->second, 0) == 5);
   CHECK(std::count_if(chunks.begin(), chunks.end(), [](const auto& c) { return c.first == "fcTL"; }) == 5);
   CHECK(chunks.back().first == "IEND");
 }

@@ -42,4 +42,13 @@ void write_energy_row(std::ostream& out, int step, double t, const EnergyAccount
   out << row;
 }
 
+std::string energy_summary(const EnergyAccount& account) {
+  std::ostringstream line;
+  line.precision(4);
+  line << "energy: kinetic " << account.kinetic << " J, elastic " << account.elastic << " J, work " << account.external_work
+       << " J, dissipated " << account.dissipated() << " J = damping " << account.damping << " J + numerical (the rest of the balance) "
+       << account.numerical << " J";
+  return line.str();
+}
+
 } // namespace kerf

@@ -82,6 +82,8 @@ std::optional<BladeEdge> CuttingWindow::blade() {
 
 bool CuttingWindow::cutting() const { return data_->cutting; }
 
+void CuttingWindow::close() { data_->interactor->TerminateApp(); }
+
 bool CuttingWindow::closed() const { return data_->closed; }
 
 void CuttingWindow::deliver(const ScriptedEvent& e) {

@@ -13,6 +13,8 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
 
 #include <cstdlib>
 
@@ -21,6 +23,7 @@ namespace kerf {
 struct OrganView::Data {
   vtkNew<vtkPolyDataMapper> skin_mapper, wall_mapper;
   vtkNew<vtkActor> skin, walls;
+  vtkNew<vtkTextActor> caption;
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
 };
@@ -41,6 +44,15 @@ void look(vtkActor& actor, const double colour[3]) {
 
 } // namespace
 
+OrganViewSettings organ_view_settings(const RenderSpec& render, bool on_screen) {
+  OrganViewSettings settings;
+  settings.width = render.width;
+  settings.height = render.height;
+  settings.camera = {.azimuth = render.azimuth, .elevation = render.elevation, .zoom = render.zoom};
+  settings.on_screen = on_screen;
+  return settings;
+}
+
 OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& settings) : data_(std::make_unique<Data>()) {
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
@@ -58,6 +70,14 @@ OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& se
   data_->skin->SetBackfaceProperty(inside);
   data_->renderer->AddActor(data_->skin);
   data_->renderer->AddActor(data_->walls);
+  vtkTextProperty* text = data_->caption->GetTextProperty();
+  text->SetFontSize(16);
+  text->SetColor(0.1, 0.1, 0.1);
+  text->SetJustificationToLeft();
+  text->SetVerticalJustificationToTop();
+  data_->caption->SetPosition(10, settings.height - 10);
+  data_->caption->SetVisibility(0);
+  data_->renderer->AddViewProp(data_->caption);
   const auto& [r, g, b] = picture_background;
   data_->renderer->SetBackground(r / 255.0, g / 255.0, b / 255.0);
   data_->window->SetOffScreenRendering(settings.on_screen ? 0 : 1);
@@ -78,6 +98,11 @@ void OrganView::show(const TriangleSurface& skin, const TriangleSurface& cut_wal
   data_->wall_mapper->SetInputData(triangle_surface_polydata(cut_walls, Shading::faceted));
   data_->walls->SetVisibility(cut_walls.num_triangles() > 0);
   data_->renderer->ResetCameraClippingRange();
+}
+
+void OrganView::caption(const std::string& text) {
+  data_->caption->SetInput(text.c_str());
+  data_->caption->SetVisibility(text.empty() ? 0 : 1);
 }
 
 vtkSmartPointer<vtkImageData> OrganView::picture() { return window_picture(*data_->window); }

@@ -353,13 +353,13 @@ TimeSpec read_time(const ObjectReader& r) {
   if (!r.has("time")) return time;
   ObjectReader t(r.at("time"), "time", r.file());
   t.allow_only({"integrator", "dt", "steps", "beta", "gamma", "alpha", "rayleigh", "mass", "tolerance", "initial_velocity",
-                "allow_unstable", "corotation"});
+                "allow_unstable", "corotation", "iterations"});
   time.integrator = t.text("integrator", "static");
   const bool newmark = time.integrator == "newmark", hht = time.integrator == "hht_alpha";
   const bool dynamic = newmark || hht || time.integrator == "backward_euler" || time.integrator == "central_difference";
   if (time.integrator == "static") {
     for (const char* key : {"dt", "steps", "beta", "gamma", "alpha", "rayleigh", "mass", "tolerance", "initial_velocity", "allow_unstable",
-                            "corotation"})
+                            "corotation", "iterations"})
       if (t.has(key)) t.fail(t.field(key), "only meaningful with a dynamic integrator");
     return time;
   }
@@ -382,6 +382,10 @@ TimeSpec read_time(const ObjectReader& r) {
   time.corotation = t.text("corotation", "");
   if (t.has("corotation") && time.corotation != "frozen" && time.corotation != "checked" && time.corotation != "newton")
     t.fail("time.corotation", "expected \"frozen\", \"checked\" or \"newton\", got \"" + time.corotation + "\"");
+  if (t.has("iterations")) {
+    time.iterations = t.integer("iterations", 0);
+    if (*time.iterations < 0) t.fail("time.iterations", "expected an integer >= 0 (0: iterate to time.tolerance)");
+  }
   if (!(time.dt > 0.0)) t.fail("time.dt", "expected a positive time step (s)");
   if (time.steps < 1) t.fail("time.steps", "expected a positive integer");
   if ((time.rayleigh.array() < 0.0).any()) t.fail("time.rayleigh", "expected non-negative coefficients");
@@ -684,6 +688,8 @@ void require_features(const Scene& scene, const SceneFeatures& taught) {
     if (scene.blade.given) throw InputError(file, "blade", "a moving blade cuts from chapter 7 on (07_liver)");
     if (scene.render_given) throw InputError(file, "render", "rendered frames are drawn from chapter 7 on (07_liver)");
   }
+  if (scene.time.iterations && !taught.real_time)
+    throw InputError(file, "time.iterations", "a step of a fixed number of quasi-Newton iterations is taught from chapter 8 on (08_real_time)");
   if (scene.time.integrator != "static" && !taught.dynamics)
     throw InputError(file, "time.integrator", "\"" + scene.time.integrator + "\" is taught from chapter 6 on (06_newmark)");
 }

@@ -1,5 +1,7 @@
 #include "kerf/xfem/blade_cut.hpp"
 
+#include "kerf/app/input_error.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -67,6 +69,16 @@ Eigen::AlignedBox3d BladeCut::take_grown_box() {
   const Eigen::AlignedBox3d box = grown_;
   grown_.setEmpty();
   return box;
+}
+
+void require_blade_starts_outside(const CutXfemModel& model, const PointLocator& locator, const BladePath& path, int samples,
+                                  const std::string& file) {
+  const Eigen::VectorXd at_rest = Eigen::VectorXd::Zero(3 * model.num_dof_nodes());
+  const ReferenceBlade first = pull_back_blade_edge(model, locator, at_rest, path.edge_at(path.start_time()), samples, nullptr, 1e-9);
+  if (first.in_tissue())
+    throw InputError(file, "blade.path",
+                     "the blade's edge starts inside the body (" + std::to_string(first.samples_inside) + " of " + std::to_string(samples) +
+                         " samples): start it outside, so that the cut opens through the skin");
 }
 
 } // namespace kerf

@@ -5,6 +5,7 @@
 #include "kerf/dynamics/linear_dynamic_system.hpp"
 
 #include <ostream>
+#include <string>
 
 namespace kerf {
 
@@ -81,5 +82,9 @@ inline constexpr const char* energy_csv_header = "step,t,kinetic,elastic,externa
 /// energy.csv's row for a step: `step,t,kinetic,elastic,external_work,dissipated,damping,numerical`,
 /// full precision.
 void write_energy_row(std::ostream& out, int step, double t, const EnergyAccount& account);
+
+/// One line for a program's summary: `energy: kinetic K J, elastic W J, work ... J, dissipated D
+/// J = damping ... J + numerical (the rest of the balance) ... J`, 4 significant digits.
+std::string energy_summary(const EnergyAccount& account);
 
 } // namespace kerf

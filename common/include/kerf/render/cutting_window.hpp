@@ -42,6 +42,8 @@ public:
   /// Runs the window system's loop until q or the window closes, calling `tick` every
   /// `tick_ms` milliseconds.
   void run(int tick_ms, const std::function<void()>& tick);
+  /// Ends run()'s loop, as q does.
+  void close();
   /// Whether q was pressed.
   bool closed() const;
 

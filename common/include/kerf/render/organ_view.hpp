@@ -9,11 +9,13 @@
 
 #include "kerf/mesh/triangle_surface.hpp"
 #include "kerf/render/camera_view.hpp"
+#include "kerf/scene/scene.hpp"
 
 #include <vtkSmartPointer.h>
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 class vtkImageData;
 class vtkRenderWindow;
@@ -28,6 +30,9 @@ struct OrganViewSettings {
   bool on_screen = false;        ///< a window on the display (the interactive mode) instead of off-screen
 };
 
+/// The settings of the scene's "render" field: its size and camera.
+OrganViewSettings organ_view_settings(const RenderSpec& render, bool on_screen);
+
 /// One render window showing two surfaces: the organ's skin (liver red) and the cut's walls
 /// (the paler red of cut tissue), both smooth-shaded.
 class OrganView {
@@ -41,6 +46,9 @@ public:
   OrganView& operator=(const OrganView&) = delete;
   /// Replaces what is shown (the camera stays).
   void show(const TriangleSurface& skin, const TriangleSurface& cut_walls);
+  /// Text in the picture's upper left corner, one or more lines (empty: none): the interactive
+  /// window's instructions, step time and real-time factor.
+  void caption(const std::string& text);
   /// Draws, and returns the picture: RGB, row 0 at the bottom (VTK's order).
   vtkSmartPointer<vtkImageData> picture();
   /// Draws and writes the picture as a PNG.

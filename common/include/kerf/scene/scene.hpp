@@ -151,6 +151,9 @@ struct TimeSpec {
   /// nonlinear_newmark.hpp. Empty (not given): the chapter's default, "frozen" in chapter 6,
   /// "checked" in chapter 7, whose blade carves pieces that turn faster than a frozen step follows.
   std::string corotation;
+  /// Chapter 8: the quasi-Newton iterations of a step (quasi_newton_newmark.hpp), >= 0; 0 iterates
+  /// until the step's relative gradient is within `tolerance`. Not given: chapter 8's default (4).
+  std::optional<int> iterations;
 };
 
 /// The "blade" field (chapter 7): the cutting edge's path in the world, and how finely its
@@ -217,6 +220,7 @@ struct SceneFeatures {
   bool cut_quadrature = false; ///< triangle-mesh cuts, several cuts, cut Tet10, the "quadrature" field (chapter 4)
   bool crack_tip = false;      ///< the "crack_tip" field (chapter 5)
   bool organ = false;          ///< the "liver" mesh, the "blade" and "render" fields (chapter 7)
+  bool real_time = false;      ///< time.iterations (chapter 8)
   /// "williams" Dirichlet entries: chapter 5's static program prescribes them on the cut body's
   /// [u; a; b] (scene_williams.hpp); the dynamic chapters do not.
   bool williams = false;

@@ -27,6 +27,7 @@
 
 #include <Eigen/Geometry>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace kerf {
@@ -70,5 +71,11 @@ private:
   ReferenceBlade last_blade_;
   Eigen::AlignedBox3d grown_;
 };
+
+/// Refuses a path whose first edge is already in the tissue (it would cut from nowhere): the cut
+/// must open through the skin.
+/// @throws InputError `file: blade.path: the blade's edge starts inside the body ...`
+void require_blade_starts_outside(const CutXfemModel& model, const PointLocator& locator, const BladePath& path, int samples,
+                                  const std::string& file);
 
 } // namespace kerf
