@@ -315,7 +315,7 @@ private:
 
   // Output along the run.
   std::unique_ptr<kerf::CutRunLog> log_;
-  std::ofstream timings_csv_, cuts_csv_, energy_csv_;
+  std::ofstream timings_csv_, cuts_csv_, rebuilds_csv_, energy_csv_;
   StepTimes times_, total_;
   double slowest_step_ = 0.0, slowest_topology_step_ = 0.0;
   int iterations_ = 0;
@@ -380,14 +380,25 @@ void RealTimeCut::rebuild() {
     elastic_before = newmark_->elastic_energy(state_.u);
     times_.output += seconds_since(start);
   }
+  auto lap = clock::now();
   const kerf::CutStateTransfer transfer(*body_->model, *next->model, kerf::BranchStateRule::fit, &next->dofs);
   state_.u = transfer(state_.u);
   state_.v = transfer(state_.v);
   state_.a = transfer(state_.a);
+  const double transfer_seconds = seconds_since(lap);
   if (log_) log_->model_changed();
+  lap = clock::now();
   newmark_->set_body(next->step_body(scene_));
+  const double set_body_seconds = seconds_since(lap);
   body_ = std::move(next);
   ++topology_changes_;
+  if (rebuilds_csv_.is_open()) {
+    const RebuildTimes& r = body_->times;
+    char row[256];
+    std::snprintf(row, sizeof row, "%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", topology_changes_, 1e3 * r.pieces, 1e3 * r.model, 1e3 * r.mass,
+                  1e3 * r.corotated, 1e3 * transfer_seconds, 1e3 * set_body_seconds);
+    rebuilds_csv_ << row;
+  }
   if (cuts_csv_.is_open()) {
     const auto start = clock::now();
     double volume = 0.0;
@@ -488,6 +499,9 @@ void RealTimeCut::run() {
   cuts_csv_ = kerf::open_csv(options_.out_dir / "cuts.csv",
                              "change,t,crossed_tets,enrichments,unknowns,volume_error,mass_error,kinetic_before,kinetic_after,"
                              "elastic_before,elastic_after\n");
+  // What a change of topology spends its time on: the new body's pieces (recut, enrichment), its
+  // model (and DOF map), its mass, its corotated pieces; the state's transfer; the step's set_body.
+  rebuilds_csv_ = kerf::open_csv(options_.out_dir / "rebuilds.csv", "change,pieces_ms,model_ms,mass_ms,corotated_ms,transfer_ms,set_body_ms\n");
   log_->write(0, 0.0, *body_->model, *body_->cuts, state_.u, account_);
   const auto start = clock::now();
   auto last_line = start;

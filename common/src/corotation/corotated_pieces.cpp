@@ -88,6 +88,25 @@ CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial
     const double tet_volume = std::abs(det_J) / 6.0;
     largest_volume_mismatch_ = std::max(largest_volume_mismatch_, std::abs(pieces_volume - tet_volume) / tet_volume);
   }
+  // The blocks: the four-slot pieces in order, four at a time.
+  std::vector<std::size_t> simple;
+  for (std::size_t p = 0; p < volume_.size(); ++p) (first_slot_[p + 1] - first_slot_[p] == 4 ? simple : unblocked_).push_back(p);
+  const std::size_t full = simple.size() / 4 * 4;
+  unblocked_.insert(unblocked_.end(), simple.begin() + static_cast<std::ptrdiff_t>(full), simple.end());
+  for (std::size_t k = 0; k < full; k += 4) {
+    PieceBlock block;
+    for (int lane = 0; lane < 4; ++lane) {
+      const std::size_t p = simple[k + static_cast<std::size_t>(lane)];
+      block.piece[lane] = p;
+      block.volume[lane] = volume_[p];
+      for (int a = 0; a < 4; ++a) {
+        const int s = first_slot_[p] + a;
+        block.dof[a][lane] = 3 * slot_node_[s];
+        for (int i = 0; i < 3; ++i) block.gradient[a][i][lane] = slot_gradient_[s][i];
+      }
+    }
+    blocks_.push_back(block);
+  }
 }
 
 Eigen::Matrix3d CorotatedPieces::gradient_sum(const Eigen::VectorXd& q, std::size_t p) const {
@@ -155,21 +174,28 @@ CorotatedPieces::StepTerms CorotatedPieces::step_terms(const Eigen::VectorXd& u,
     throw std::invalid_argument("CorotatedPieces::step_terms: expected one reference sum and one rotation per piece");
   force.setZero(u.size());
   if (rotations.size() != volume_.size()) rotations.assign(volume_.size(), Eigen::Matrix3d::Identity());
-  StepTerms terms;
-  for (std::size_t p = 0; p < volume_.size(); ++p) {
-    // One gather serves both terms: F - I for the elastic one, F - I - (sum of u_ref) = D for K_R d.
-    const Eigen::Matrix3d grad_u = gradient_sum(u, p);
-    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
-    const Eigen::Matrix3d& R = rotations[p] = warm_rotation(F, rotations[p], rotation_, turn_tolerance);
-    const Eigen::Matrix3d strain = symmetric_part(R.transpose() * F) - Eigen::Matrix3d::Identity();
-    const Eigen::Matrix3d& Q = turned[p];
-    const Eigen::Matrix3d rate_strain = symmetric_part(Q.transpose() * (grad_u - reference_sums[p]));
-    terms.W += volume_[p] * energy_density(strain);
-    terms.half_dKd += volume_[p] * energy_density(rate_strain);
-    // One scatter: V (R sigma(strain) + c Q sigma(rate_strain)) g_s.
-    add_piece_force(p, volume_[p] * (R * stress(strain) + c * (Q * stress(rate_strain))), force);
+  StepTerms terms = block_step_terms(u, reference_sums, c, turned, force, rotations, turn_tolerance);
+  for (std::size_t p : unblocked_) {
+    const StepTerms piece = piece_step_terms(p, u, reference_sums[p], c, turned[p], force, rotations[p], turn_tolerance);
+    terms.W += piece.W;
+    terms.half_dKd += piece.half_dKd;
   }
   return terms;
+}
+
+CorotatedPieces::StepTerms CorotatedPieces::piece_step_terms(std::size_t p, const Eigen::VectorXd& u, const Eigen::Matrix3d& reference_sum,
+                                                             double c, const Eigen::Matrix3d& turned, Eigen::VectorXd& force,
+                                                             Eigen::Matrix3d& rotation, double turn_tolerance) const {
+  // One gather serves both terms: F - I for the elastic one, F - I - (sum of u_ref) = D for K_R d.
+  const Eigen::Matrix3d grad_u = gradient_sum(u, p);
+  const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
+  const Eigen::Matrix3d& R = rotation = warm_rotation(F, rotation, rotation_, turn_tolerance);
+  const Eigen::Matrix3d strain = symmetric_part(R.transpose() * F) - Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d& Q = turned;
+  const Eigen::Matrix3d rate_strain = symmetric_part(Q.transpose() * (grad_u - reference_sum));
+  // One scatter: V (R sigma(strain) + c Q sigma(rate_strain)) g_s.
+  add_piece_force(p, volume_[p] * (R * stress(strain) + c * (Q * stress(rate_strain))), force);
+  return {volume_[p] * energy_density(strain), volume_[p] * energy_density(rate_strain)};
 }
 
 Eigen::SparseMatrix<double> CorotatedPieces::laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const {

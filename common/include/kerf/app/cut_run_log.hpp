@@ -30,7 +30,7 @@ namespace kerf {
 /// Where and how often.
 struct CutRunLogSettings {
   std::filesystem::path out_dir;          ///< created if missing
-  std::string name;                       ///< the scene's: <name>_pieces.pvd, <name>_pieces_NNNNNN.vtu
+  std::string name;                       ///< the scene's: NAME_pieces.pvd, NAME_pieces_NNNNNN.vtu
   int output_every = 1;                   ///< a .vtu every n steps
   int last_step = 0;                      ///< and at this one
   double mean_edge = 0.0;                 ///< the mesh's (m): the opening's samples are half of it apart
@@ -62,7 +62,7 @@ private:
 };
 
 /// A run's PNG frames (none: nothing) and, if the scene's render.animation, the animated PNG of
-/// them, <out_dir>/<scene name>.png, played at the simulation's pace (a frame every render.every
+/// them, OUT_DIR/NAME.png (NAME the scene's), played at the simulation's pace (a frame every render.every
 /// steps of dt). Returns what to report: a line per file written.
 std::vector<std::string> write_run_animation(const std::vector<std::filesystem::path>& frames, const Scene& scene,
                                              const std::filesystem::path& out_dir);
