@@ -261,7 +261,7 @@ TEST_CASE("a blade over the same tets twice, and a freed piece, which falls as a
   }
 }
 
-TEST_CASE("many passes: 1000 steps with the blade in the tissue, and where 4 iterations a step fail") {
+TEST_CASE("many passes: 1000 steps with the blade cutting, and where 4 iterations a step fail") {
   const auto dir = kerf_test::fresh_dir("chapter08_passes");
   // Fourteen passes of the blade between x = `from` and x = `to` and back, 6 mm apart in y, each
   // 0.7 s, turning in one step: a new sheet each pass that leaves the organ.
@@ -290,24 +290,33 @@ TEST_CASE("many passes: 1000 steps with the blade in the tissue, and where 4 ite
     CHECK(check_nothing_lost(dir / "shallow" / "cuts.csv") == 0);
     check_energy_bounded(dir / "shallow" / "energy.csv");
   }
-  SUBCASE("deep passes on 2000 tets carve thin slabs: 4 iterations a step diverge, 12 hold") {
+  SUBCASE("deep passes on 2000 tets carve thin slabs: 4 iterations a step make energy, 12 do not") {
     // Seven deep passes leave slabs 6 mm thick, a third of a tet, hanging from the back; they
-    // swing faster than four quasi-Newton iterations a step follow, and the run diverges. The
-    // program stops with one line naming the step (chapter 6's bounded-energy check). Twelve
-    // iterations a step (or chapter 7's checked Newton step) carry the run to its end.
+    // swing faster than four quasi-Newton iterations a step follow. Without the step's energy
+    // check the run diverged at step 484; with it (a step that would create more than 1 % of the
+    // body's energy is solved on) the run ends, its stored energy bounded by gravity's work, but
+    // its steps create energy that the damping then takes: the rest of the balance is negative,
+    // by a large part of the work (measured: -0.64 J of 0.73 J). The slabs' motion is wrong.
+    // Twelve iterations a step (or chapter 7's checked Newton step) dissipate, as the tight
+    // step does (measured: +0.050 J).
     json deep = small_scene(2000, 1000);
     deep["blade"]["path"] = passes(0.11, -0.09, -0.015);
     const auto four = run_scene(chapter_08, deep, dir, "deep_4");
-    INFO(four.err);
-    CHECK(four.exit_status == 3);
-    CHECK(four.err.find("diverged at step") != std::string::npos);
-    CHECK(std::count(four.err.begin(), four.err.end(), '\n') == 1);
+    INFO(four.out, four.err);
+    REQUIRE(four.exit_status == 0);
+    check_energy_bounded(dir / "deep_4" / "energy.csv");
+    const double rest_4 = read_table(dir / "deep_4" / "energy.csv").back().at("numerical");
     deep["time"]["iterations"] = 12;
     const auto twelve = run_scene(chapter_08, deep, dir, "deep_12");
     INFO(twelve.out, twelve.err);
     REQUIRE(twelve.exit_status == 0);
     CHECK(check_nothing_lost(dir / "deep_12" / "cuts.csv") <= 2);
     check_energy_bounded(dir / "deep_12" / "energy.csv");
+    const auto energy_12 = read_table(dir / "deep_12" / "energy.csv").back();
+    MESSAGE("the rest of the balance after 1000 steps: " << rest_4 << " J at 4 iterations a step, " << energy_12.at("numerical")
+                                                        << " J at 12 (gravity's work " << energy_12.at("external_work") << " J)");
+    CHECK(rest_4 < -0.2 * energy_12.at("external_work"));
+    CHECK(energy_12.at("numerical") > 0.0);
   }
 }
 

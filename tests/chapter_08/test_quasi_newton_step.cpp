@@ -146,10 +146,12 @@ TEST_CASE("Chapter 8's step at its default iterations stays within 2 % of chapte
   const std::vector<Eigen::VectorXd> newton = cantilever::newton_run(bar, 2.0, 0.01, steps);
   const Eigen::Index nodes = bar.body.mesh.num_nodes();
   const double largest = cantilever::largest_displacement(newton, nodes);
+  // L-BFGS alone (the energy check off): the error against the number of iterations.
   std::vector<double> errors;
   for (int iterations : {2, 3, 4, 5, 10}) {
     kerf::QuasiNewtonNewmarkSettings settings;
     settings.iterations = iterations;
+    settings.energy_tolerance = 0.0;
     const std::vector<Eigen::VectorXd> quasi_newton = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, settings);
     errors.push_back(cantilever::largest_difference(newton, quasi_newton, nodes) / largest);
     MESSAGE(iterations << " iterations: " << errors.back());
@@ -158,8 +160,17 @@ TEST_CASE("Chapter 8's step at its default iterations stays within 2 % of chapte
   for (std::size_t i = 1; i < errors.size(); ++i) CHECK(errors[i] < errors[i - 1]);
   CHECK(errors.front() > 0.2);
   CHECK(errors.back() <= 1e-3);
+  // The default: 4 iterations, and the energy check, which sends on the steps that would create
+  // more than 1 % of the body's energy. At 2 iterations a step it fires often and brings the
+  // error from 65 % to under 5 % (measured: 4.4 %); at 4 it changes little.
   const std::vector<Eigen::VectorXd> quasi_newton = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, {});
   CHECK(cantilever::largest_difference(newton, quasi_newton, nodes) <= 0.02 * largest);
+  kerf::QuasiNewtonNewmarkSettings two;
+  two.iterations = 2;
+  const std::vector<Eigen::VectorXd> checked = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, two);
+  const double checked_error = cantilever::largest_difference(newton, checked, nodes) / largest;
+  MESSAGE("2 iterations with the energy check: " << checked_error);
+  CHECK(checked_error < 0.05);
 }
 
 TEST_CASE("A piece the cut frees falls at g") {
@@ -268,9 +279,11 @@ TEST_CASE("Chapter 8's matrix needs the stiffness of a dilatation: kappa = 2 mu 
   const std::vector<Eigen::VectorXd> newton = cantilever::newton_run(bar, 2.0, 0.01, steps);
   const Eigen::Index nodes = bar.body.mesh.num_nodes();
   const double reference = cantilever::largest_displacement(newton, nodes);
+  // L-BFGS alone: the energy check would send the bad steps on and hide what A does.
   const auto largest_at = [&](double stiffness_in_mu) {
     kerf::QuasiNewtonNewmarkSettings settings;
     settings.stiffness_in_mu = stiffness_in_mu;
+    settings.energy_tolerance = 0.0;
     const std::vector<Eigen::VectorXd> run = cantilever::quasi_newton_run(bar, 2.0, 0.01, steps, settings);
     double largest = 0.0;
     for (const Eigen::VectorXd& u : run) largest = u.allFinite() ? std::max(largest, cantilever::largest_displacement({u}, nodes)) : INFINITY;

@@ -183,7 +183,8 @@ void QuasiNewtonNewmark::solve(Eigen::MatrixXd& B, QuasiNewtonStepReport& report
 
 double QuasiNewtonNewmark::step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient, QuasiNewtonStepReport& report) {
   const auto start = std::chrono::steady_clock::now();
-  const double turn_tolerance = settings_.tolerance > 0.0 ? 1e-7 : settings_.turn_tolerance;
+  // Exact rotations for the tight step, and for a step the energy check sent on.
+  const double turn_tolerance = settings_.tolerance > 0.0 || report.checked ? 1e-7 : settings_.turn_tolerance;
   const CorotatedPieces::StepTerms terms =
       body_.pieces->step_terms(u, damping_reference_sums_, c_D_, rotations_n_, gradient, last_rotations_, turn_tolerance);
   report.pieces_seconds += seconds_since(start);
@@ -216,6 +217,28 @@ Eigen::MatrixXd QuasiNewtonNewmark::descent_direction(const Eigen::MatrixXd& g, 
   return -q;
 }
 
+StepEnergy QuasiNewtonNewmark::step_balance(const DynamicState& state, double W_n, const Eigen::VectorXd& x, const Eigen::VectorXd& v_tilde,
+                                            QuasiNewtonStepReport& report) {
+  const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
+  // Newmark's correctors at x.
+  const Eigen::VectorXd a = ((x - u_tilde_) / (beta * dt_ * dt_)).cwiseProduct(free_mask_);
+  const Eigen::VectorXd v = v_tilde + gamma * dt_ * a;
+  // The works: the load's, and the damping's Delta u . C v_bar with the step's C; the rest of the
+  // balance is the step's own (energy_account.hpp).
+  const Eigen::VectorXd du = x - state.u;
+  const Eigen::VectorXd v_bar = 0.5 * (state.v + v);
+  Eigen::VectorXd K_vbar;
+  const auto start = std::chrono::steady_clock::now();
+  body_.pieces->warped_product(rotations_n_, v_bar, K_vbar);
+  report.pieces_seconds += seconds_since(start);
+  StepEnergy energy;
+  energy.external_work = du.dot(body_.load);
+  energy.damping = du.dot(body_.rayleigh_alpha * (body_.M * v_bar) + body_.rayleigh_beta * K_vbar);
+  const double kinetic_change = 0.5 * v.dot(body_.M * v) - 0.5 * state.v.dot(body_.M * state.v);
+  energy.numerical = energy.external_work - energy.damping - kinetic_change - (elastic_energy(x) - W_n); // x: the last evaluated
+  return energy;
+}
+
 QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
   QuasiNewtonStepReport report;
@@ -239,55 +262,64 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   const double scale = std::max(g.norm(), gather(body_.load).norm());
   if (!settings_.keep_history) pairs_.clear();
   const bool tight = settings_.tolerance > 0.0;
-  for (int it = 0;; ++it) {
-    report.relative_gradient = scale > 0.0 ? g.norm() / scale : 0.0;
-    if (tight && report.relative_gradient <= settings_.tolerance) break;
-    if (tight && it >= settings_.max_iterations) {
-      report.converged = false;
-      break;
+  // L-BFGS's iterations until `done`, from x; `it` counts them over the whole step.
+  int it = 0;
+  const auto minimise = [&](const auto& done) {
+    for (;; ++it) {
+      report.relative_gradient = scale > 0.0 ? g.norm() / scale : 0.0;
+      if (done()) break;
+      if (it >= settings_.max_iterations) {
+        report.converged = false;
+        break;
+      }
+      const Eigen::MatrixXd d = descent_direction(g, report);
+      const double slope = inner(g, d);
+      // Backtracking on E_n: the full step unless it fails Armijo's test.
+      double step_length = 1.0;
+      Eigen::VectorXd x_new, gradient_new;
+      double E_new = 0.0;
+      for (;;) {
+        x_new = x;
+        scatter_add(step_length * d, x_new);
+        E_new = step_energy(x_new, gradient_new, report);
+        ++report.iterations;
+        if (E_new <= E + 1e-4 * step_length * slope || step_length < 1.0 / 64.0) break;
+        step_length *= 0.5;
+      }
+      const Eigen::MatrixXd g_new = gather(gradient_new);
+      Eigen::MatrixXd s = step_length * d, y = g_new - g;
+      if (inner(s, y) > 1e-12 * s.norm() * y.norm()) {
+        pairs_.emplace_back(std::move(s), std::move(y));
+        if (static_cast<int>(pairs_.size()) > settings_.history) pairs_.pop_front();
+      }
+      x = std::move(x_new);
+      g = g_new;
+      E = E_new;
     }
-    if (!tight && it >= settings_.iterations) break;
-    const Eigen::MatrixXd d = descent_direction(g, report);
-    const double slope = inner(g, d);
-    // Backtracking on E_n: the full step unless it fails Armijo's test.
-    double step_length = 1.0;
-    Eigen::VectorXd x_new, gradient_new;
-    double E_new = 0.0;
-    for (;;) {
-      x_new = x;
-      scatter_add(step_length * d, x_new);
-      E_new = step_energy(x_new, gradient_new, report);
-      ++report.iterations;
-      if (E_new <= E + 1e-4 * step_length * slope || step_length < 1.0 / 64.0) break;
-      step_length *= 0.5;
-    }
-    const Eigen::MatrixXd g_new = gather(gradient_new);
-    Eigen::MatrixXd s = step_length * d, y = g_new - g;
-    if (inner(s, y) > 1e-12 * s.norm() * y.norm()) {
-      pairs_.emplace_back(std::move(s), std::move(y));
-      if (static_cast<int>(pairs_.size()) > settings_.history) pairs_.pop_front();
-    }
-    x = std::move(x_new);
-    g = g_new;
-    E = E_new;
+  };
+  if (tight) minimise([&] { return report.relative_gradient <= settings_.tolerance; });
+  else minimise([&] { return it >= settings_.iterations; });
+  StepEnergy balance = step_balance(state, W_n, x, v_tilde, report);
+  // The check of a step of a fixed number of iterations: near E_n's minimum a step creates little
+  // energy; a few iterations from it, where a flap or a sliver the blade left turns fast, it can
+  // create some every step, and the run diverges. Such a step goes on, with exact rotations and
+  // fresh pairs, to a relative gradient of 1e-6 or check_iterations more iterations.
+  const double energy_scale = W_n + 0.5 * state.v.dot(body_.M * state.v);
+  if (!tight && settings_.energy_tolerance > 0.0 &&
+      -balance.numerical > settings_.energy_tolerance * (energy_scale + std::abs(balance.external_work))) {
+    report.checked = true;
+    pairs_.clear();
+    E = step_energy(x, gradient, report);
+    g = gather(gradient);
+    const int limit = it + settings_.check_iterations;
+    minimise([&] { return report.relative_gradient <= 1e-6 || it >= limit; });
+    balance = step_balance(state, W_n, x, v_tilde, report);
   }
+  report.energy = balance;
   // Newmark's correctors.
   DynamicState end{state.t + dt_, x, Eigen::VectorXd(), (x - u_tilde_) / (beta * dt_ * dt_)};
   end.a = end.a.cwiseProduct(free_mask_);
   end.v = v_tilde + gamma * dt_ * end.a;
-  // The works: the load's, and the damping's Delta u . C v_bar with the step's C; the rest of the
-  // balance is the step's own (energy_account.hpp).
-  const Eigen::VectorXd du = end.u - state.u;
-  const Eigen::VectorXd v_bar = 0.5 * (state.v + end.v);
-  Eigen::VectorXd K_vbar;
-  start = std::chrono::steady_clock::now();
-  body_.pieces->warped_product(rotations_n_, v_bar, K_vbar);
-  report.pieces_seconds += seconds_since(start);
-  report.energy.external_work = du.dot(body_.load);
-  report.energy.damping = du.dot(body_.rayleigh_alpha * (body_.M * v_bar) + body_.rayleigh_beta * K_vbar);
-  const double kinetic_change = 0.5 * end.v.dot(body_.M * end.v) - 0.5 * state.v.dot(body_.M * state.v);
-  const double W_end = elastic_energy(end.u);
-  report.energy.numerical = report.energy.external_work - report.energy.damping - kinetic_change - (W_end - W_n);
   state = std::move(end);
   return report;
 }

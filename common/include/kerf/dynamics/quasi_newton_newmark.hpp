@@ -36,6 +36,12 @@ struct QuasiNewtonNewmarkSettings {
   bool keep_history = true;
   /// kappa of the matrix's stiffness part, kappa L (Pa), as a multiple of mu: (8.6).
   double stiffness_in_mu = 0.0; ///< 0: 2 + lambda / mu, the stiffness of a pure dilatation
+  /// With a fixed number of iterations: a step that would create more energy than this times
+  /// the body's energy at its start (kinetic + elastic) plus the load's work in the step goes on,
+  /// with exact rotations, to a relative gradient of 1e-6 or check_iterations more iterations;
+  /// 0: never checked.
+  double energy_tolerance = 1e-2;
+  int check_iterations = 40;
 };
 
 /// What one step did.
@@ -44,6 +50,7 @@ struct QuasiNewtonStepReport {
   int iterations = 0;         ///< gradient evaluations after the first (one per iteration, more when the line search halves)
   double relative_gradient = 0.0; ///< |g_f| / max(|g_f^0|, |f_f|) at the step's end
   bool converged = true;      ///< with a tolerance: whether it was met
+  bool checked = false;       ///< the energy check sent the step on
   /// Wall-clock seconds of the step's two kinds of work (the rest is vector work, the mass's
   /// products and the energy account): the passes over the pieces (forces, energies, rotations)
   /// and the solves with the factor of A.
@@ -120,6 +127,10 @@ public:
 private:
   // E_n(u) (8.4), up to a constant, and its gradient on all DOFs.
   double step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient, QuasiNewtonStepReport& report);
+  // The step's works and the rest of its energy balance were it to end at x, the last point
+  // evaluated (W_n: the elastic energy at its start).
+  StepEnergy step_balance(const DynamicState& state, double W_n, const Eigen::VectorXd& x, const Eigen::VectorXd& v_tilde,
+                          QuasiNewtonStepReport& report);
   // -H g, L-BFGS's direction (or A^{-1}'s where the pairs give no descent).
   Eigen::MatrixXd descent_direction(const Eigen::MatrixXd& g, QuasiNewtonStepReport& report);
   // A X = B in place (the factor's solve), timed into the report.
