@@ -27,7 +27,8 @@
    What is new:
    - the step: no tangent is assembled and no rotation is found from scratch; each of a few
      iterations is one pass over the pieces (corotation/corotated_pieces.hpp: forces, energy and
-     warm-started rotations) and one solve with a factor made once (solve/growing_cholesky.hpp);
+     warm-started rotations, four pieces at a time with vector instructions) and one solve with a
+     factor made once (solve/growing_cholesky.hpp); a step that would create energy is solved on;
    - a cut grows the factor instead of redoing it (QuasiNewtonNewmark::set_body);
    - the model of one cut is one immutable object, CutBody, shared between the thread that steps
      and the thread that draws: the window draws the body it was handed while the next is built;
@@ -201,6 +202,7 @@ struct Frame {
   double step_ms = 0.0;           // the last second's mean simulate time of a step
   double real_time_factor = 1.0;  // simulated over wall-clock time, over the last second
   std::size_t crossed_tets = 0;
+  std::optional<kerf::BladeEdge> blade; // the edge the step's cut used, if the hand held it
 };
 
 class Mailbox {
@@ -283,7 +285,7 @@ private:
   void rebuild();
   void step(int n, const kerf::BladeEdge* blade, bool blade_last);
   void simulate_in_real_time(Mailbox& mailbox, clock::time_point opened);
-  void draw(const std::shared_ptr<const CutBody>& body, const Eigen::VectorXd& u);
+  void draw(const std::shared_ptr<const CutBody>& body, const Eigen::VectorXd& u, const std::optional<kerf::BladeEdge>& blade);
   void write_timings_row(int n, double wall);
   void report(const std::string& line) const {
     if (!options_.quiet) std::cout << line << '\n';
@@ -459,15 +461,15 @@ void RealTimeCut::step(int n, const kerf::BladeEdge* blade, bool blade_last) {
 // @sect4{RealTimeCut::draw}
 //
 // As chapter 7's: the visual surface moved by the field of the piece each vertex lies in,
-// without the triangles the cut tore, and the walls of the cut.
-void RealTimeCut::draw(const std::shared_ptr<const CutBody>& body, const Eigen::VectorXd& u) {
+// without the triangles the cut tore, and the walls of the cut; and the blade where it is.
+void RealTimeCut::draw(const std::shared_ptr<const CutBody>& body, const Eigen::VectorXd& u, const std::optional<kerf::BladeEdge>& blade) {
   if (untorn_body_ != body) {
     untorn_ = body->cuts->num_surfaces() > 0 ? kerf::untorn_triangles(visual_->reference(), *body->cuts) : std::vector<int>{};
     untorn_body_ = body;
   }
   kerf::TriangleSurface skin = visual_->deform(kerf::xfem_visual_displacement(*body->model, u));
   if (body->cuts->num_surfaces() > 0) skin = kerf::keep_triangles(skin, untorn_);
-  view_->show(skin, kerf::cut_face_surface(*body->model, u));
+  view_->show(skin, kerf::cut_face_surface(*body->model, u), blade);
 }
 
 // @sect4{RealTimeCut::write_timings_row}
@@ -517,7 +519,7 @@ void RealTimeCut::run() {
     times_.output += seconds_since(output_start);
     if (view_ && (n % scene_.render.every == 0 || n == steps)) {
       const auto render_start = clock::now();
-      draw(body_, state_.u);
+      draw(body_, state_.u, blade);
       char name[64];
       std::snprintf(name, sizeof name, "_frame_%06d.png", n);
       png_frames_.push_back(options_.out_dir / "frames" / (scene_.name + name));
@@ -590,6 +592,7 @@ void RealTimeCut::simulate_in_real_time(Mailbox& mailbox, clock::time_point open
     frame->step_ms = meter.mean_step_ms();
     frame->real_time_factor = meter.factor();
     frame->crossed_tets = crossed_tets();
+    frame->blade = blade;
     mailbox.publish(std::move(frame));
     if (wall >= 1.0 && meter.factor() < 0.95 && wall - last_warning >= 2.0) {
       std::fprintf(stderr,
@@ -618,7 +621,7 @@ void RealTimeCut::run_interactive() {
   kerf::CuttingWindow window(*view_, depth);
   const std::string instructions = "Shift + drag: cut   drag: turn   q: quit";
   view_->caption(instructions);
-  draw(body_, state_.u);
+  draw(body_, state_.u, std::nullopt);
   view_->window().Render();
 
   Mailbox mailbox;
@@ -636,7 +639,7 @@ void RealTimeCut::run_interactive() {
     mailbox.post_blade(window.blade());
     const std::shared_ptr<const Frame> frame = mailbox.newest();
     if (!frame || frame == drawn) return;
-    draw(frame->body, frame->u);
+    draw(frame->body, frame->u, frame->blade);
     char caption[256];
     std::snprintf(caption, sizeof caption, "%s\nt = %.2f s, step %d: %.1f ms a step, real-time factor %.2f, %zu tets cut", instructions.c_str(),
                   frame->t, frame->step, frame->step_ms, frame->real_time_factor, frame->crossed_tets);

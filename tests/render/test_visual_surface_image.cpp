@@ -7,6 +7,7 @@
 #include "support/cut_body.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/implicit_surface_mesh.hpp"
+#include "kerf/render/organ_view.hpp"
 #include "kerf/render/surface_image.hpp"
 #include "kerf/render/triangle_surface_polydata.hpp"
 #include "kerf/render/write_png.hpp"
@@ -123,4 +124,40 @@ TEST_CASE("a visual sphere in a box opened by an XFEM cut shows the background t
   MESSAGE("gap ", gap, " of the column, ", gap * 0.95, " m");
   CHECK(gap > 0.13 / 0.95);
   CHECK(gap < 0.22 / 0.95);
+}
+
+TEST_CASE("the organ view draws the blade in steel where it is given, and nothing of it otherwise") {
+  // An organ of 5 cm radius (the sphere scaled) seen by OrganView (chapters 7 and 8's picture)
+  // three times: without a blade, with one, without again. The blade is an edge standing beside
+  // the organ, from (0.06, 0, -0.05) to (0.06, 0, 0.05) m, so that the skin hides none of it. The
+  // pixels that change are the blade's, and steel is grey: r, g and b within 40 of each other.
+  kerf::TriangleSurface organ = sphere();
+  organ.vertices *= 0.05;
+  kerf::OrganViewSettings settings;
+  settings.width = 240;
+  settings.height = 180;
+  kerf::OrganView view(organ, settings);
+  const auto draw = [&](const std::optional<kerf::BladeEdge>& blade) {
+    view.show(organ, kerf::TriangleSurface{}, blade);
+    vtkSmartPointer<vtkImageData> copy = vtkSmartPointer<vtkImageData>::New();
+    copy->DeepCopy(view.picture());
+    return copy;
+  };
+  const vtkSmartPointer<vtkImageData> before = draw(std::nullopt);
+  const vtkSmartPointer<vtkImageData> with = draw(kerf::BladeEdge{{0.06, 0.0, -0.05}, {0.06, 0.0, 0.05}});
+  const vtkSmartPointer<vtkImageData> after = draw(std::nullopt);
+  int changed = 0, grey = 0, changed_after = 0;
+  for (int j = 0; j < settings.height; ++j)
+    for (int i = 0; i < settings.width; ++i) {
+      const render_test::Pixel a = render_test::pixel(*before, i, j), b = render_test::pixel(*with, i, j),
+                               c = render_test::pixel(*after, i, j);
+      if (a.r != c.r || a.g != c.g || a.b != c.b) ++changed_after;
+      if (a.r == b.r && a.g == b.g && a.b == b.b) continue;
+      ++changed;
+      if (std::max({b.r, b.g, b.b}) - std::min({b.r, b.g, b.b}) < 40) ++grey;
+    }
+  MESSAGE("pixels the blade changed: " << changed << ", grey among them: " << grey);
+  CHECK(changed > 20);
+  CHECK(grey >= 0.8 * changed);
+  CHECK(changed_after == 0);
 }

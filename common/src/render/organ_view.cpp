@@ -16,13 +16,15 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <cstdlib>
 
 namespace kerf {
 
 struct OrganView::Data {
-  vtkNew<vtkPolyDataMapper> skin_mapper, wall_mapper;
-  vtkNew<vtkActor> skin, walls;
+  vtkNew<vtkPolyDataMapper> skin_mapper, wall_mapper, blade_mapper;
+  vtkNew<vtkActor> skin, walls, blade;
   vtkNew<vtkTextActor> caption;
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
@@ -33,6 +35,32 @@ namespace {
 // Colours of liver tissue: the capsule's dark red-brown, and the paler parenchyma a cut exposes.
 constexpr double skin_colour[3] = {0.55, 0.16, 0.12};
 constexpr double wall_colour[3] = {0.86, 0.47, 0.42};
+constexpr double steel_colour[3] = {0.72, 0.75, 0.8};
+
+// A bar of square cross-section 2h around the segment from a to b: 8 corners, 12 triangles.
+TriangleSurface bar_along(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double h) {
+  const Eigen::Vector3d axis = (b - a).normalized();
+  const Eigen::Vector3d any = std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = axis.cross(any).normalized() * h, e2 = axis.cross(e1).normalized() * h;
+  TriangleSurface bar;
+  bar.vertices.resize(8, 3);
+  const Eigen::Vector3d ends[2] = {a, b};
+  const Eigen::Vector3d offsets[4] = {-e1 - e2, e1 - e2, e1 + e2, -e1 + e2};
+  for (int end = 0; end < 2; ++end)
+    for (int k = 0; k < 4; ++k) bar.vertices.row(4 * end + k) = (ends[end] + offsets[k]).transpose();
+  bar.triangles.resize(12, 3);
+  int row = 0;
+  for (int k = 0; k < 4; ++k) { // the four sides
+    const int k1 = (k + 1) % 4;
+    bar.triangles.row(row++) << k, k1, 4 + k1;
+    bar.triangles.row(row++) << k, 4 + k1, 4 + k;
+  }
+  bar.triangles.row(row++) << 0, 2, 1; // the two ends
+  bar.triangles.row(row++) << 0, 3, 2;
+  bar.triangles.row(row++) << 4, 5, 6;
+  bar.triangles.row(row++) << 4, 6, 7;
+  return bar;
+}
 
 void look(vtkActor& actor, const double colour[3]) {
   actor.GetProperty()->SetColor(colour[0], colour[1], colour[2]);
@@ -63,6 +91,11 @@ OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& se
   data_->walls->SetMapper(data_->wall_mapper);
   look(*data_->skin, skin_colour);
   look(*data_->walls, wall_colour);
+  data_->blade_mapper->ScalarVisibilityOff();
+  data_->blade->SetMapper(data_->blade_mapper);
+  look(*data_->blade, steel_colour);
+  data_->blade->GetProperty()->SetSpecular(0.6);
+  data_->blade->SetVisibility(0);
   // The inside of the skin shows through the gap of an opened cut: the back faces get the
   // walls' colour, darker, so that a look into the wound reads as tissue.
   vtkNew<vtkProperty> inside;
@@ -70,6 +103,7 @@ OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& se
   data_->skin->SetBackfaceProperty(inside);
   data_->renderer->AddActor(data_->skin);
   data_->renderer->AddActor(data_->walls);
+  data_->renderer->AddActor(data_->blade);
   vtkTextProperty* text = data_->caption->GetTextProperty();
   text->SetFontSize(16);
   text->SetColor(0.1, 0.1, 0.1);
@@ -93,10 +127,13 @@ OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& se
 
 OrganView::~OrganView() = default;
 
-void OrganView::show(const TriangleSurface& skin, const TriangleSurface& cut_walls) {
+void OrganView::show(const TriangleSurface& skin, const TriangleSurface& cut_walls, const std::optional<BladeEdge>& blade) {
   data_->skin_mapper->SetInputData(triangle_surface_polydata(skin, Shading::smooth));
   data_->wall_mapper->SetInputData(triangle_surface_polydata(cut_walls, Shading::faceted));
   data_->walls->SetVisibility(cut_walls.num_triangles() > 0);
+  const bool drawn = blade && (blade->end - blade->start).norm() > 0.0;
+  if (drawn) data_->blade_mapper->SetInputData(triangle_surface_polydata(bar_along(blade->start, blade->end, 0.00075), Shading::faceted));
+  data_->blade->SetVisibility(drawn ? 1 : 0);
   data_->renderer->ResetCameraClippingRange();
 }
 

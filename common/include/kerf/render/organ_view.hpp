@@ -7,6 +7,7 @@
 /// at rest, so the organ moves in the picture rather than the picture around the organ.
 #pragma once
 
+#include "kerf/cut/blade_path.hpp"
 #include "kerf/mesh/triangle_surface.hpp"
 #include "kerf/render/camera_view.hpp"
 #include "kerf/scene/scene.hpp"
@@ -15,6 +16,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 class vtkImageData;
@@ -34,7 +36,7 @@ struct OrganViewSettings {
 OrganViewSettings organ_view_settings(const RenderSpec& render, bool on_screen);
 
 /// One render window showing two surfaces: the organ's skin (liver red) and the cut's walls
-/// (the paler red of cut tissue), both smooth-shaded.
+/// (the paler red of cut tissue), both smooth-shaded; and the blade, when given, in steel.
 class OrganView {
 public:
   /// @param at_rest  the skin before anything moves: the camera is fitted to it once
@@ -44,8 +46,9 @@ public:
   ~OrganView();
   OrganView(const OrganView&) = delete;
   OrganView& operator=(const OrganView&) = delete;
-  /// Replaces what is shown (the camera stays).
-  void show(const TriangleSurface& skin, const TriangleSurface& cut_walls);
+  /// Replaces what is shown (the camera stays): the skin, the walls of the cut, and the blade's
+  /// edge if given, drawn as a thin steel bar along it (1.5 mm square).
+  void show(const TriangleSurface& skin, const TriangleSurface& cut_walls, const std::optional<BladeEdge>& blade = std::nullopt);
   /// Text in the picture's upper left corner, one or more lines (empty: none): the interactive
   /// window's instructions, step time and real-time factor.
   void caption(const std::string& text);
