@@ -58,6 +58,7 @@
 #include "kerf/scene/scene_prescribed_motion.hpp"
 #include "kerf/scene/scene_quadrature.hpp"
 #include "kerf/scene/scene_quasi_static.hpp"
+#include "kerf/xfem/cut_xfem_mass.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/cut_xfem_output.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
@@ -224,9 +225,7 @@ void CutDynamics::setup_system() {
   M_ = kerf::scene_cut_xfem_mass(scene_, *model_, rule_);
   // The body's mass as the mass matrix sees it: e^T M e for e a unit translation of the nodes
   // along x (the enriched DOFs at 0), rho V for every scheme of lumped_mass.hpp.
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(M_.rows());
-  for (Eigen::Index v = 0; v < mesh_.num_nodes(); ++v) e[3 * v] = 1.0;
-  report("mass: " + scene_.time.mass + ", " + std::to_string(e.dot(M_ * e)) + " kg");
+  report("mass: " + scene_.time.mass + ", " + std::to_string(kerf::translation_mass(M_, mesh_.num_nodes())) + " kg");
 }
 
 // @sect4{CutDynamics::assemble_system}

@@ -79,6 +79,7 @@
 #include "kerf/xfem/cut_faces.hpp"
 #include "kerf/xfem/cut_opening.hpp"
 #include "kerf/xfem/cut_state_transfer.hpp"
+#include "kerf/xfem/cut_xfem_mass.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/cut_xfem_output.hpp"
 #include "kerf/xfem/hinged_fragments.hpp"
@@ -372,9 +373,7 @@ void LiverCut::apply_cut() {
     // assembly at the state, which the step's energy and the next step's start take from it.
     const kerf::EnergyAccount after = newmark_->start_account(state_);
     const auto start = std::chrono::steady_clock::now();
-    double volume = 0.0;
-    for (Eigen::Index t = 0; t < organ_->mesh.num_tets(); ++t)
-      for (int p = 0; p < model_->num_integrated_pieces(t); ++p) volume += model_->integrated_volume(t, p);
+    const double volume = model_->integrated_volume();
     char row[512];
     std::snprintf(row, sizeof row, "%d,%.17g,%d,%ld,%ld,%.6e,%.6e,%.17g,%.17g,%.17g,%.17g\n", topology_changes_ + 1, state_.t,
                   static_cast<int>(blade_cut_->crossing().crossed_tets().size()), static_cast<long>(this->enrichment().num_enrichments()),
@@ -486,9 +485,7 @@ void LiverCut::setup_system() {
     state_ = newmark_->initial_state(zero, zero, 0.0);
     account_ = newmark_->start_account(state_);
   }
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
-  for (Eigen::Index v = 0; v < organ_->mesh.num_nodes(); ++v) e[3 * v] = 1.0;
-  body_mass_ = e.dot(system_.M * e);
+  body_mass_ = kerf::translation_mass(system_.M, organ_->mesh.num_nodes());
   rebuild_times_.integrator = lap() - (step_times_.assemble - assembled_before);
 }
 
@@ -813,14 +810,7 @@ int main(int argc, char** argv) {
                                                 : kerf::parse_scene(chapter07::demo_scene, "demo scene", ".");
         kerf::require_features(scene, kerf::SceneFeatures{.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true,
                                                           .crack_tip = true, .organ = true});
-        if (!scene.cuts.empty())
-          throw kerf::InputError(scene.source.string(), "cuts", "07_liver's cuts are made by the \"blade\"; a fixed cut is chapter 6's (06_newmark)");
-        if (scene.time.integrator != "newmark")
-          throw kerf::InputError(scene.source.string(), "time.integrator", "07_liver steps with \"newmark\" (chapter 6's corotated step)");
-        if (!(scene.material.density > 0.0))
-          throw kerf::InputError(scene.source.string(), "material.density", "dynamics needs a positive density (kg/m^3)");
-        if (!scene.blade.given && !options.interactive)
-          throw kerf::InputError(scene.source.string(), "blade", "expected a \"blade\" field with its \"path\": 07_liver cuts with it");
+        kerf::require_blade_scene(scene, "07_liver", "chapter 6's corotated step", options.interactive);
         chapter07::LiverCut problem(scene, options);
         if (options.interactive) problem.run_interactive();
         else problem.run();

@@ -61,6 +61,7 @@
 #include "kerf/xfem/blade_cut.hpp"
 #include "kerf/xfem/cut_faces.hpp"
 #include "kerf/xfem/cut_state_transfer.hpp"
+#include "kerf/xfem/cut_xfem_mass.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/cut_xfem_output.hpp"
 #include "kerf/xfem/hinged_fragments.hpp"
@@ -405,12 +406,8 @@ void RealTimeCut::rebuild() {
   }
   if (cuts_csv_.is_open()) {
     const auto start = clock::now();
-    double volume = 0.0;
-    for (Eigen::Index t = 0; t < organ_->mesh.num_tets(); ++t)
-      for (int p = 0; p < body_->model->num_integrated_pieces(t); ++p) volume += body_->model->integrated_volume(t, p);
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(body_->M.rows());
-    for (Eigen::Index v = 0; v < organ_->mesh.num_nodes(); ++v) e[3 * v] = 1.0;
-    const double mass = e.dot(body_->M * e);
+    const double volume = body_->model->integrated_volume();
+    const double mass = kerf::translation_mass(body_->M, organ_->mesh.num_nodes());
     char row[512];
     std::snprintf(row, sizeof row, "%d,%.17g,%zu,%ld,%ld,%.6e,%.6e,%.17g,%.17g,%.17g,%.17g\n", topology_changes_, state_.t, crossed_tets(),
                   static_cast<long>(body_->enrichment->num_enrichments()), static_cast<long>(body_->dofs.num_free),
@@ -708,13 +705,8 @@ int main(int argc, char** argv) {
         kerf::Scene scene = options.scene ? kerf::read_scene_file(*options.scene) : kerf::parse_scene(chapter08::demo_scene, "demo scene", ".");
         kerf::require_features(scene, kerf::SceneFeatures{.corotational = true, .cuts = true, .dynamics = true, .cut_quadrature = true,
                                                           .crack_tip = true, .organ = true, .real_time = true});
+        kerf::require_blade_scene(scene, "08_real_time", "chapter 8's quasi-Newton Newmark step", options.interactive);
         const std::string file = scene.source.string();
-        if (!scene.cuts.empty()) throw kerf::InputError(file, "cuts", "08_real_time's cuts are made by the \"blade\"; a fixed cut is chapter 6's (06_newmark)");
-        if (scene.time.integrator != "newmark")
-          throw kerf::InputError(file, "time.integrator", "08_real_time steps with \"newmark\" (chapter 8's quasi-Newton Newmark step)");
-        if (!(scene.material.density > 0.0)) throw kerf::InputError(file, "material.density", "dynamics needs a positive density (kg/m^3)");
-        if (!scene.blade.given && !options.interactive)
-          throw kerf::InputError(file, "blade", "expected a \"blade\" field with its \"path\": 08_real_time cuts with it");
         if (scene.mesh.order != 1)
           throw kerf::InputError(file, "mesh.order", "08_real_time's pieces are linear: Tet4 only (chapter 7 cuts Tet10)");
         if (scene.crack_tip.given)

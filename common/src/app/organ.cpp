@@ -46,6 +46,16 @@ Organ::Organ(Scene& scene, std::optional<int> tets, std::ostream* warnings) {
   summary = line.str();
 }
 
+void require_blade_scene(const Scene& scene, const std::string& program, const std::string& step, bool interactive) {
+  const std::string file = scene.source.string();
+  if (!scene.cuts.empty())
+    throw InputError(file, "cuts", program + "'s cuts are made by the \"blade\"; a fixed cut is chapter 6's (06_newmark)");
+  if (scene.time.integrator != "newmark") throw InputError(file, "time.integrator", program + " steps with \"newmark\" (" + step + ")");
+  if (!(scene.material.density > 0.0)) throw InputError(file, "material.density", "dynamics needs a positive density (kg/m^3)");
+  if (!scene.blade.given && !interactive)
+    throw InputError(file, "blade", "expected a \"blade\" field with its \"path\": " + program + " cuts with it");
+}
+
 TriangleSurface scene_visual_surface(const Scene& scene, const TetMesh& mesh) {
   if (!scene.render.surface.empty()) return read_surface(scene.render.surface, scene.render.surface_scale, &std::cerr);
   if (scene.mesh.is_liver)

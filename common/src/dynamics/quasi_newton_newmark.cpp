@@ -217,8 +217,8 @@ Eigen::MatrixXd QuasiNewtonNewmark::descent_direction(const Eigen::MatrixXd& g, 
   return -q;
 }
 
-StepEnergy QuasiNewtonNewmark::step_balance(const DynamicState& state, double W_n, const Eigen::VectorXd& x, const Eigen::VectorXd& v_tilde,
-                                            QuasiNewtonStepReport& report) {
+StepEnergy QuasiNewtonNewmark::step_balance(const DynamicState& state, double kinetic_n, double W_n, const Eigen::VectorXd& x,
+                                            const Eigen::VectorXd& v_tilde, QuasiNewtonStepReport& report) {
   const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
   // Newmark's correctors at x.
   const Eigen::VectorXd a = ((x - u_tilde_) / (beta * dt_ * dt_)).cwiseProduct(free_mask_);
@@ -234,7 +234,7 @@ StepEnergy QuasiNewtonNewmark::step_balance(const DynamicState& state, double W_
   StepEnergy energy;
   energy.external_work = du.dot(body_.load);
   energy.damping = du.dot(body_.rayleigh_alpha * (body_.M * v_bar) + body_.rayleigh_beta * K_vbar);
-  const double kinetic_change = 0.5 * v.dot(body_.M * v) - 0.5 * state.v.dot(body_.M * state.v);
+  const double kinetic_change = 0.5 * v.dot(body_.M * v) - kinetic_n;
   energy.numerical = energy.external_work - energy.damping - kinetic_change - (elastic_energy(x) - W_n); // x: the last evaluated
   return energy;
 }
@@ -243,6 +243,7 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   const double beta = settings_.newmark.beta, gamma = settings_.newmark.gamma;
   QuasiNewtonStepReport report;
   const double W_n = elastic_energy(state.u); // found by the step before, at its end
+  const double kinetic_n = 0.5 * state.v.dot(body_.M * state.v);
   rotations_n_ = last_rotations_;
   // Newmark's predictors, zero on the held (still) DOFs.
   u_tilde_ = (state.u + dt_ * state.v + dt_ * dt_ * (0.5 - beta) * state.a).cwiseProduct(free_mask_);
@@ -299,21 +300,20 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   };
   if (tight) minimise([&] { return report.relative_gradient <= settings_.tolerance; });
   else minimise([&] { return it >= settings_.iterations; });
-  StepEnergy balance = step_balance(state, W_n, x, v_tilde, report);
+  StepEnergy balance = step_balance(state, kinetic_n, W_n, x, v_tilde, report);
   // The check of a step of a fixed number of iterations: near E_n's minimum a step creates little
   // energy; a few iterations from it, where a flap or a sliver the blade left turns fast, it can
   // create some every step, and the run diverges. Such a step goes on, with exact rotations and
   // fresh pairs, to a relative gradient of 1e-6 or check_iterations more iterations.
-  const double energy_scale = W_n + 0.5 * state.v.dot(body_.M * state.v);
   if (!tight && settings_.energy_tolerance > 0.0 &&
-      -balance.numerical > settings_.energy_tolerance * (energy_scale + std::abs(balance.external_work))) {
+      -balance.numerical > settings_.energy_tolerance * (kinetic_n + W_n + std::abs(balance.external_work))) {
     report.checked = true;
     pairs_.clear();
     E = step_energy(x, gradient, report);
     g = gather(gradient);
     const int limit = it + settings_.check_iterations;
     minimise([&] { return report.relative_gradient <= 1e-6 || it >= limit; });
-    balance = step_balance(state, W_n, x, v_tilde, report);
+    balance = step_balance(state, kinetic_n, W_n, x, v_tilde, report);
   }
   report.energy = balance;
   // Newmark's correctors.

@@ -118,4 +118,10 @@ Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, do
   });
 }
 
+double translation_mass(const Eigen::SparseMatrix<double>& M, Eigen::Index num_mesh_nodes) {
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(M.rows());
+  for (Eigen::Index v = 0; v < num_mesh_nodes; ++v) e[3 * v] = 1.0;
+  return e.dot(M * e);
+}
+
 } // namespace kerf

@@ -123,6 +123,13 @@ Eigen::Index CutXfemModel::num_negative_weights() const {
   return count;
 }
 
+double CutXfemModel::integrated_volume() const {
+  double volume = 0.0;
+  for (Eigen::Index t = 0; t < mesh_.num_tets(); ++t)
+    for (int p = 0; p < num_integrated_pieces(t); ++p) volume += integrated_volume(t, p);
+  return volume;
+}
+
 double CutXfemModel::integrated_volume(Eigen::Index t, int p) const {
   const std::span<const PhantomPiece> list = integrated_pieces(t);
   if (p < 0 || static_cast<std::size_t>(p) >= list.size())

@@ -44,6 +44,13 @@ struct Organ {
   std::string summary;              ///< one line: nodes, tets, how the mesh was made and in what time, its quality
 };
 
+/// The refusals every program that cuts with a blade shares (chapters 7 and 8): a fixed cut (the
+/// blade makes the cut), an integrator other than Newmark's (`step` says whose step it is), a
+/// density that is not positive, and, unless the mouse is the blade (`interactive`), a scene
+/// without a "blade" field.
+/// @throws InputError naming the scene file and the field
+void require_blade_scene(const Scene& scene, const std::string& program, const std::string& step, bool interactive);
+
 /// The surface a picture of the organ shows: the scene's render.surface (read_surface; SOFA's
 /// liver comes with a smooth one), for the built-in liver a fine mesh of its implicit surface
 /// (Mesh_3's surface mesher, triangles of render.visual_size, several times finer than the tets'

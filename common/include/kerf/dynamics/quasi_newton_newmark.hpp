@@ -128,9 +128,9 @@ private:
   // E_n(u) (8.4), up to a constant, and its gradient on all DOFs.
   double step_energy(const Eigen::VectorXd& u, Eigen::VectorXd& gradient, QuasiNewtonStepReport& report);
   // The step's works and the rest of its energy balance were it to end at x, the last point
-  // evaluated (W_n: the elastic energy at its start).
-  StepEnergy step_balance(const DynamicState& state, double W_n, const Eigen::VectorXd& x, const Eigen::VectorXd& v_tilde,
-                          QuasiNewtonStepReport& report);
+  // evaluated (kinetic_n, W_n: the energies at its start).
+  StepEnergy step_balance(const DynamicState& state, double kinetic_n, double W_n, const Eigen::VectorXd& x,
+                          const Eigen::VectorXd& v_tilde, QuasiNewtonStepReport& report);
   // -H g, L-BFGS's direction (or A^{-1}'s where the pairs give no descent).
   Eigen::MatrixXd descent_direction(const Eigen::MatrixXd& g, QuasiNewtonStepReport& report);
   // A X = B in place (the factor's solve), timed into the report.

@@ -59,4 +59,9 @@ std::vector<Eigen::MatrixXd> cut_xfem_piece_masses(const CutXfemModel& model, Ei
 /// assemble_cut_xfem_mass() with the piece masses from `masses` (of this model; scaled by `density`).
 Eigen::SparseMatrix<double> assemble_cut_xfem_mass(const CutXfemModel& model, double density, const SplitTetMasses& masses);
 
+/// The body's mass as a mass matrix sees it: e^T M e for e a unit translation of the mesh's
+/// nodes along x (the enrichments at 0); rho V for every scheme of lumped_mass.hpp and for the
+/// consistent mass, so a change of the cut must leave it unchanged.
+double translation_mass(const Eigen::SparseMatrix<double>& M, Eigen::Index num_mesh_nodes);
+
 } // namespace kerf

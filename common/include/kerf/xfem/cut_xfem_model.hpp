@@ -223,6 +223,9 @@ public:
   /// (m^3); for a tet integrated whole (p = 0), the tet's volume.
   /// @throws std::out_of_range unless 0 <= p < num_integrated_pieces(t)
   double integrated_volume(Eigen::Index t, int p) const;
+  /// The sum of every integrated piece's volume (m^3): the uncut mesh's, to round-off, when the
+  /// pieces' rules integrate 1 exactly.
+  double integrated_volume() const;
   /// V_enr and V_supp of every enrichment from the rules' weights (enrichment_volumes.hpp).
   EnrichmentVolumes enrichment_volumes() const;
   /// The total number of quadrature points on the pieces of split tets.
