@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace kerf {
 
@@ -47,5 +48,18 @@ inline bool has_area(const CellFace& face, const Eigen::Vector3d& area_vector, d
   return area_vector.norm() > snap * longest;
 }
 inline bool has_area(const CellFace& face, double snap) { return has_area(face, polygon_area_vector(face.polygon), snap); }
+
+// The outward planes of a cell's faces that have area (unit normals): a point x is outside the
+// cell, beyond a tolerance, when n . x - offset > tolerance for one of them (face_plane's test).
+inline std::vector<Plane> cell_face_planes(const ConvexCell& cell, double snap) {
+  std::vector<Plane> planes;
+  for (const CellFace& face : cell.faces) {
+    const Eigen::Vector3d area_vector = polygon_area_vector(face.polygon);
+    if (!has_area(face, area_vector, snap)) continue;
+    const Eigen::Vector3d n = area_vector.normalized();
+    planes.push_back({n, n.dot(face.polygon.front())});
+  }
+  return planes;
+}
 
 } // namespace kerf

@@ -285,6 +285,8 @@ TetPieces split_tet_by_triangles(const Corners& X, const std::vector<CutTriangle
     std::sort(result.corner_pieces[k].begin(), result.corner_pieces[k].end());
   }
 
+  result.cell_planes.reserve(cells.size());
+  for (const ConvexCell& cell : cells) result.cell_planes.push_back(cell_face_planes(cell, 1e-12 * result.diameter));
   result.triangles = triangles;
   if (result.pieces.size() > 1) result.state = SurfaceCutState::completely_cut;
   else if (cut_inside) result.state = SurfaceCutState::partially_cut;

@@ -19,17 +19,13 @@ const char* to_string(SurfaceCutState state) {
 std::vector<int> pieces_containing(const TetPieces& pieces, const Eigen::Vector3d& x, double tolerance) {
   std::vector<int> found;
   const double snap = 1e-12 * pieces.diameter;
+  const bool cached = pieces.cell_planes.size() == pieces.cells.size();
+  std::vector<Plane> planes;
   for (std::size_t c = 0; c < pieces.cells.size(); ++c) {
-    bool inside = true;
-    for (const CellFace& face : pieces.cells[c].faces) {
-      // The area vector once for both questions; the first face x is outside of decides.
-      const Eigen::Vector3d area_vector = polygon_area_vector(face.polygon);
-      if (!has_area(face, area_vector, snap)) continue;
-      if (face_plane(face, area_vector, tolerance)(x) > 0.0) {
-        inside = false;
-        break;
-      }
-    }
+    if (!cached) planes = cell_face_planes(pieces.cells[c], snap);
+    // The first face plane x lies beyond decides that it is outside the cell.
+    const std::vector<Plane>& faces = cached ? pieces.cell_planes[c] : planes;
+    const bool inside = std::none_of(faces.begin(), faces.end(), [&](const Plane& face) { return face.evaluate(x) > tolerance; });
     const int p = pieces.cell_piece[c];
     if (inside && std::find(found.begin(), found.end(), p) == found.end()) found.push_back(p);
   }

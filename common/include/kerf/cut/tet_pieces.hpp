@@ -63,6 +63,10 @@ struct TetPieces {
   std::vector<CutTriangle> triangles;    ///< the cut triangles it was split by (FaceOrigin::index counts in this list)
   std::array<std::vector<int>, 4> corner_pieces; ///< for each corner, the pieces whose closure holds it (two or more
                                                  ///< when the cut passes through the corner), in increasing order
+  /// For each cell, the planes of its faces that have area (unit outward normal, n . x = offset on
+  /// the face): what pieces_containing tests a point against, found once when the tet is split
+  /// instead of at every lookup. Empty for pieces put together by hand: then they are found per call.
+  std::vector<std::vector<Plane>> cell_planes;
   int num_pieces() const { return static_cast<int>(pieces.size()); }
 };
 
