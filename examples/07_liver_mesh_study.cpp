@@ -58,7 +58,7 @@ Row measure(const std::string& label, int target, const kerf::ImplicitMeshOptimi
   row.label = label;
   row.target = target;
   const auto start = kerf_measure::clock::now();
-  const kerf::TetMesh mesh = kerf::make_liver_mesh(target, optimisation);
+  const kerf::TetMesh mesh = kerf::make_liver_mesh(target, kerf::LiverShape::lobes, optimisation);
   row.seconds = std::chrono::duration<double>(kerf_measure::clock::now() - start).count();
   row.tets = mesh.num_tets();
   row.vertices = mesh.num_nodes();

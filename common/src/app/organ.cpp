@@ -3,7 +3,6 @@
 #include "kerf/app/input_error.hpp"
 #include "kerf/mesh/implicit_surface_mesh.hpp"
 #include "kerf/mesh/liver_mesh.hpp"
-#include "kerf/mesh/liver_shape.hpp"
 #include "kerf/mesh/read_surface.hpp"
 #include "kerf/mesh/tet_quality.hpp"
 #include "kerf/scene/scene_mesh.hpp"
@@ -58,8 +57,10 @@ void require_blade_scene(const Scene& scene, const std::string& program, const s
 
 TriangleSurface scene_visual_surface(const Scene& scene, const TetMesh& mesh) {
   if (!scene.render.surface.empty()) return read_surface(scene.render.surface, scene.render.surface_scale, &std::cerr);
-  if (scene.mesh.is_liver)
-    return implicit_surface_mesh(liver_phi, liver_centre(), liver_bounding_radius(), implicit_surface_sizing(scene.render.visual_size));
+  if (scene.mesh.is_liver) {
+    const LiverDomain liver = liver_domain(scene.mesh.liver_shape);
+    return implicit_surface_mesh(liver.phi, liver.centre, liver.radius, implicit_surface_sizing(scene.render.visual_size));
+  }
   return boundary_surface(mesh);
 }
 

@@ -1,6 +1,7 @@
 #include "kerf/mesh/liver_mesh.hpp"
 
 #include "kerf/mesh/liver_shape.hpp"
+#include "kerf/mesh/liver_wedge.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -29,14 +30,24 @@ void require_target(int target_tets) {
 
 } // namespace
 
-double liver_regular_edge(int target_tets) {
-  require_target(target_tets);
-  // V_regular = L^3 / (6 sqrt 2), so L = (6 sqrt(2) V / T)^(1/3).
-  return std::cbrt(6.0 * std::sqrt(2.0) * liver_volume() / target_tets);
+LiverDomain liver_domain(LiverShape shape) {
+  if (shape == LiverShape::lobes) return {liver_phi, liver_centre(), liver_bounding_radius(), liver_volume()};
+  const Eigen::AlignedBox3d box = liver_wedge_bounding_box();
+  const Eigen::Vector3d centre = box.center();
+  // The box's centre must lie inside (Mesh_3 starts there): it does for the wedge's parameters,
+  // and a change that moved it out would fail here, not in the mesher.
+  if (!(liver_wedge_phi(centre) < 0.0)) throw std::logic_error("liver_domain: the wedge's box centre lies outside it");
+  return {liver_wedge_phi, centre, 1.1 * 0.5 * box.diagonal().norm(), implicit_volume(liver_wedge_phi, box, 0.002)};
 }
 
-ImplicitMeshSizing liver_mesh_sizing(int target_tets) {
-  const double L = liver_regular_edge(target_tets);
+double liver_regular_edge(int target_tets, LiverShape shape) {
+  require_target(target_tets);
+  // V_regular = L^3 / (6 sqrt 2), so L = (6 sqrt(2) V / T)^(1/3).
+  return std::cbrt(6.0 * std::sqrt(2.0) * liver_domain(shape).volume / target_tets);
+}
+
+ImplicitMeshSizing liver_mesh_sizing(int target_tets, LiverShape shape) {
+  const double L = liver_regular_edge(target_tets, shape);
   ImplicitMeshSizing sizing;
   sizing.cell_size = cell_size_over_circumradius * std::sqrt(6.0) / 4.0 * L;
   sizing.facet_size = facet_size_over_cell_size * sizing.cell_size;
@@ -46,9 +57,10 @@ ImplicitMeshSizing liver_mesh_sizing(int target_tets) {
   return sizing;
 }
 
-TetMesh make_liver_mesh(int target_tets, const ImplicitMeshOptimisation& optimisation) {
-  const ImplicitMeshSizing sizing = liver_mesh_sizing(target_tets);
-  return mesh_implicit_domain(liver_phi, liver_centre(), liver_bounding_radius(), sizing, optimisation);
+TetMesh make_liver_mesh(int target_tets, LiverShape shape, const ImplicitMeshOptimisation& optimisation) {
+  const ImplicitMeshSizing sizing = liver_mesh_sizing(target_tets, shape);
+  const LiverDomain domain = liver_domain(shape);
+  return mesh_implicit_domain(domain.phi, domain.centre, domain.radius, sizing, optimisation);
 }
 
 } // namespace kerf

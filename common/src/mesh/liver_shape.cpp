@@ -34,23 +34,28 @@ Eigen::AlignedBox3d grown_lobe_box(const LiverLobe& lobe, double grow) {
 
 } // namespace
 
-Eigen::AlignedBox3d liver_bounding_box() {
-  // phi < 0 needs smooth_minimum(lobes) < 0, so min(phi_right, phi_left) < k ln 2, and needs
-  // z > z_floor, because the smooth maximum is never below either argument.
-  const double grow = liver_lobe_blend * std::log(2.0);
-  Eigen::AlignedBox3d box = grown_lobe_box(liver_right_lobe, grow);
-  box.extend(grown_lobe_box(liver_left_lobe, grow));
-  box.min().z() = std::max(box.min().z(), liver_floor_height);
+Eigen::AlignedBox3d blended_lobes_box(const LiverLobe& a, const LiverLobe& b, double blend, double floor) {
+  // phi < 0 needs smooth_minimum(lobes) < 0, so min(phi_a, phi_b) < k ln 2, and needs z > floor,
+  // because the smooth maximum is never below either argument.
+  const double grow = blend * std::log(2.0);
+  Eigen::AlignedBox3d box = grown_lobe_box(a, grow);
+  box.extend(grown_lobe_box(b, grow));
+  box.min().z() = std::max(box.min().z(), floor);
   return box;
+}
+
+Eigen::AlignedBox3d liver_bounding_box() {
+  return blended_lobes_box(liver_right_lobe, liver_left_lobe, liver_lobe_blend, liver_floor_height);
 }
 
 Eigen::Vector3d liver_centre() { return liver_bounding_box().center(); }
 
 double liver_bounding_radius() { return 1.1 * 0.5 * liver_bounding_box().diagonal().norm(); }
 
-double liver_volume(double cell) {
-  if (!(cell > 0.0)) throw std::invalid_argument("liver_volume: the grid cell must be positive");
-  const Eigen::AlignedBox3d box = liver_bounding_box();
+double liver_volume(double cell) { return implicit_volume(liver_phi, liver_bounding_box(), cell); }
+
+double implicit_volume(const std::function<double(const Eigen::Vector3d&)>& phi, const Eigen::AlignedBox3d& box, double cell) {
+  if (!(cell > 0.0)) throw std::invalid_argument("implicit_volume: the grid cell must be positive");
   const Eigen::Vector3i cells = (box.sizes() / cell).array().ceil().cast<int>();
   const Eigen::Vector3d h = box.sizes().cwiseQuotient(cells.cast<double>());
   long inside = 0;
@@ -58,7 +63,7 @@ double liver_volume(double cell) {
     for (int j = 0; j < cells.y(); ++j)
       for (int i = 0; i < cells.x(); ++i) {
         const Eigen::Vector3d midpoint = box.min() + h.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
-        if (liver_phi(midpoint) < 0.0) ++inside;
+        if (phi(midpoint) < 0.0) ++inside;
       }
   return static_cast<double>(inside) * h.prod();
 }

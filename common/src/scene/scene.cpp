@@ -158,8 +158,11 @@ MeshSpec read_mesh(const ObjectReader& scene, const std::filesystem::path& base)
     mesh.is_box = false;
     mesh.is_liver = true;
     ObjectReader liver(r.at("liver"), "mesh.liver", scene.file());
-    liver.allow_only({"tets"});
+    liver.allow_only({"tets", "shape"});
     mesh.liver_tets = liver.integer("tets", mesh.liver_tets);
+    const std::string shape = liver.text("shape", to_string(mesh.liver_shape));
+    if (shape == "wedge") mesh.liver_shape = LiverShape::wedge;
+    else if (shape != "lobes") liver.fail("mesh.liver.shape", "expected \"lobes\" or \"wedge\", got \"" + shape + "\"");
     if (mesh.liver_tets < liver_min_tets || mesh.liver_tets > liver_max_tets)
       liver.fail("mesh.liver.tets", "expected an integer in [" + std::to_string(liver_min_tets) + ", " + std::to_string(liver_max_tets) +
                                         "]: below, Mesh_3 cannot resolve the lobes; above, the mesh would take minutes");

@@ -20,7 +20,7 @@ TetMesh make_scene_mesh(const Scene& scene, std::ostream* warnings) {
     // The range was checked with the scene; Mesh_3 failing on a valid size is a failure of the
     // mesher, said in one line.
     try {
-      mesh = make_liver_mesh(scene.mesh.liver_tets);
+      mesh = make_liver_mesh(scene.mesh.liver_tets, scene.mesh.liver_shape);
     } catch (const std::exception& error) {
       throw InputError(scene.source.string(), "mesh.liver.tets", std::string("Mesh_3 could not make the liver: ") + error.what());
     }

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 
 namespace kerf {
 
@@ -56,6 +57,11 @@ double liver_phi(const Eigen::Vector3d& x);
 /// floor. It is within a few millimetres of the shape's own extent (the test measures how close).
 Eigen::AlignedBox3d liver_bounding_box();
 
+/// The box of every point where smooth_minimum(phi_a, phi_b, blend) < 0 and z > floor: each
+/// lobe's box grown by the most the blend can add, cut at the floor (liver_bounding_box's, and
+/// the wedge's, whose other terms only take away).
+Eigen::AlignedBox3d blended_lobes_box(const LiverLobe& a, const LiverLobe& b, double blend, double floor);
+
 /// The centre of liver_bounding_box(); phi is negative there (the mesher starts its rays from it).
 Eigen::Vector3d liver_centre();
 
@@ -68,5 +74,10 @@ double liver_bounding_radius();
 /// is within 0.5 % of the exact volume (0.09 % measured against 1 mm cells); the mesher only needs
 /// it to choose a size.
 double liver_volume(double cell = 0.002);
+
+/// The volume (m^3) of {phi < 0} inside `box` by the same count: the midpoints with phi < 0 of a
+/// grid of cubes of side about `cell` over the box (liver_volume is the lobes' call of it).
+/// @throws std::invalid_argument for cell <= 0
+double implicit_volume(const std::function<double(const Eigen::Vector3d&)>& phi, const Eigen::AlignedBox3d& box, double cell);
 
 } // namespace kerf

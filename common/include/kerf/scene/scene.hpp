@@ -5,6 +5,7 @@
 #include "kerf/cut/blade_path.hpp"
 #include "kerf/fem/linear_material.hpp"
 #include "kerf/fracture/williams_field.hpp"
+#include "kerf/mesh/liver_mesh.hpp"
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/scene/displacement_file.hpp"
 #include "kerf/solve/linear_solver.hpp"
@@ -21,8 +22,9 @@ namespace kerf {
 /// (mesh/liver_mesh.hpp), and at which order.
 struct MeshSpec {
   bool is_box = true;                  ///< true: "box"; false: "file" or "liver"
-  bool is_liver = false;               ///< "liver": {"tets": n} (chapter 7)
+  bool is_liver = false;               ///< "liver": {"tets": n, "shape": s} (chapter 7)
   int liver_tets = 10000;              ///< the liver's target number of tets, in [1000, 1000000]
+  LiverShape liver_shape = LiverShape::lobes; ///< "liver": {"shape": "lobes" | "wedge"}
   Eigen::Vector3d box_min{0, 0, 0};    ///< box lower corner (m)
   Eigen::Vector3d box_max{1, 1, 1};    ///< box upper corner (m)
   Eigen::Vector3i box_cells{1, 1, 1};  ///< hex cells along x, y, z (each split into 6 tets)
