@@ -168,7 +168,9 @@ struct CutBody {
     for (Eigen::Index v = 0; v < organ.mesh.num_nodes(); ++v) e_g.segment<3>(3 * v) = scene.gravity;
     weight = M * e_g;
     times.mass = take_lap();
-    corotated = std::make_unique<kerf::CorotatedPieces>(*model, scene.material, kerf::scene_quasi_static_settings(scene).rotation);
+    // The whole tets' data are the body before's, shared: only the special tets are built.
+    corotated = std::make_unique<kerf::CorotatedPieces>(*model, scene.material, kerf::scene_quasi_static_settings(scene).rotation,
+                                                        before ? before->corotated.get() : nullptr);
     times.corotated = take_lap();
   }
 

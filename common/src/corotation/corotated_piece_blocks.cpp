@@ -1,4 +1,4 @@
-// CorotatedPieces::step_terms for the pieces of four slots, four pieces at a time: the pass
+// CorotatedPieces::step_terms for the whole tets, four at a time: the pass
 // chapter 8's step makes five or more times a step, written so that each operation acts on four
 // pieces with one vector instruction (AVX2 and FMA where the processor has them, chosen when the
 // program starts; two SSE2 instructions elsewhere). The arithmetic is the scalar pass's
@@ -187,13 +187,14 @@ CorotatedPieces::StepTerms CorotatedPieces::block_step_terms(const Eigen::Vector
   StepTerms terms;
   LaneResults lanes;
   const BlockPass pass = chosen_block_pass();
-  for (const PieceBlock& block : blocks_) {
-    const BlockView view{block.dof, block.gradient, block.volume, block.piece};
+  for (const PieceBlock& block : whole_->blocks) {
+    const BlockView view{block.dof, block.gradient, &whole_volume_[block.piece[0]], block.piece};
     pass(view, u.data(), reference_sums.data()->data(), turned.data()->data(), rotations.data()->data(), force.data(), c, mu_, lambda_,
                turn_tolerance, lanes);
     for (int lane = 0; lane < 4; ++lane) {
       if (lanes.scalar[lane]) {
         const std::size_t p = block.piece[lane];
+        if (view.volume[lane] == 0.0) continue; // a special tet's whole piece: nothing to redo
         const StepTerms piece = piece_step_terms(p, u, reference_sums[p], c, turned[p], force, rotations[p], turn_tolerance);
         terms.W += piece.W;
         terms.half_dKd += piece.half_dKd;

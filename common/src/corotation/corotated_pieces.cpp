@@ -57,61 +57,104 @@ constexpr double exact_turn = 1e-7;
 
 } // namespace
 
-CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial& material, RotationMethod rotation)
-    : num_dof_nodes_(model.num_dof_nodes()), num_mesh_nodes_(model.mesh().num_nodes()), mu_(material.mu()), lambda_(material.lambda()), rotation_(rotation) {
+CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial& material, RotationMethod rotation,
+                                 const CorotatedPieces* before)
+    : num_dof_nodes_(model.num_dof_nodes()), num_mesh_nodes_(model.mesh().num_nodes()), mu_(material.mu()), lambda_(material.lambda()),
+      rotation_(rotation), num_tets_(static_cast<std::size_t>(model.mesh().num_tets())) {
   const TetMesh& mesh = model.mesh();
   if (mesh.order() != 1) throw std::invalid_argument("CorotatedPieces: the pieces are Tet4's (a Tet10's gradient varies)");
   if (model.num_branch_nodes() > 0)
     throw std::invalid_argument("CorotatedPieces: branch functions are not linear on a piece");
+  if (before && (before->num_tets_ != num_tets_ || before->num_mesh_nodes_ != num_mesh_nodes_))
+    throw std::invalid_argument("CorotatedPieces: the earlier pieces are of another mesh");
+  whole_ = before ? before->whole_ : nullptr;
+  if (!whole_) {
+    auto whole = std::make_shared<WholeTets>();
+    whole->node.resize(4 * num_tets_);
+    whole->gradient.resize(4 * num_tets_);
+    whole->volume.resize(num_tets_);
+    for (std::size_t t = 0; t < num_tets_; ++t) {
+      double det_J = 0.0;
+      const auto T = static_cast<Eigen::Index>(t);
+      const Eigen::Matrix<double, 4, 3> G = physical_shape_gradients<4>(tet_corners(mesh, T), tet4_shape_gradients(), det_J);
+      whole->volume[t] = std::abs(det_J) / 6.0;
+      for (int a = 0; a < 4; ++a) {
+        whole->node[4 * t + static_cast<std::size_t>(a)] = mesh.tets(T, a);
+        whole->gradient[4 * t + static_cast<std::size_t>(a)] = G.row(a).transpose();
+      }
+    }
+    whole->blocks.resize(num_tets_ / 4);
+    for (std::size_t k = 0; k < whole->blocks.size(); ++k) {
+      PieceBlock& block = whole->blocks[k];
+      for (int lane = 0; lane < 4; ++lane) {
+        const std::size_t t = 4 * k + static_cast<std::size_t>(lane);
+        block.piece[lane] = t;
+        for (int a = 0; a < 4; ++a) {
+          block.dof[a][lane] = 3 * whole->node[4 * t + static_cast<std::size_t>(a)];
+          for (int i = 0; i < 3; ++i) block.gradient[a][i][lane] = whole->gradient[4 * t + static_cast<std::size_t>(a)][i];
+        }
+      }
+    }
+    whole_ = std::move(whole);
+  }
+
+  // The special tets: those the model integrates by pieces, and those on which a node's
+  // enrichment acts (only a tet around an enriched node can be one): both found from the cut,
+  // not from the mesh.
+  std::vector<char> special(num_tets_, 0);
+  for (const int t : model.pieces().entry_tet)
+    if (model.integrated_by_pieces(t)) special[static_cast<std::size_t>(t)] = 1;
+  for (const int node : model.enrichment().enrichment_node)
+    for (const int t : model.pieces().neighbours->node_tets[static_cast<std::size_t>(node)]) {
+      char& is_special = special[static_cast<std::size_t>(t)];
+      for (int p = 0; p < model.num_integrated_pieces(t) && !is_special; ++p)
+        for (int a = 0; a < 4; ++a) is_special = is_special || model.phantom_node(t, p, a) != mesh.tets(t, a);
+    }
+  whole_volume_ = whole_->volume;
   first_slot_.push_back(0);
-  for (Eigen::Index t = 0; t < mesh.num_tets(); ++t) {
-    double det_J = 0.0;
-    const Eigen::Matrix<double, 4, 3> G = physical_shape_gradients<4>(tet_corners(mesh, t), tet4_shape_gradients(), det_J);
+  for (std::size_t t = 0; t < num_tets_; ++t) {
+    if (!special[t]) continue;
+    special_tets_.push_back(static_cast<int>(t));
+    whole_volume_[t] = 0.0;
+    const auto T = static_cast<Eigen::Index>(t);
     double pieces_volume = 0.0;
-    for (int p = 0; p < model.num_integrated_pieces(t); ++p) {
-      volume_.push_back(model.integrated_volume(t, p));
+    for (int p = 0; p < model.num_integrated_pieces(T); ++p) {
+      volume_.push_back(model.integrated_volume(T, p));
       pieces_volume += volume_.back();
       for (int a = 0; a < 4; ++a) {
-        const int node = mesh.tets(t, a);
+        const int node = mesh.tets(T, a);
+        const Eigen::Vector3d& g = whole_->gradient[4 * t + static_cast<std::size_t>(a)];
         slot_node_.push_back(node);
-        slot_gradient_.push_back(G.row(a).transpose());
+        slot_gradient_.push_back(g);
         // The phantom node's enrichment, if one is active on this piece: u_a + a_k.
-        const int phantom = model.phantom_node(t, p, a);
+        const int phantom = model.phantom_node(T, p, a);
         if (phantom != node) {
           slot_node_.push_back(phantom);
-          slot_gradient_.push_back(G.row(a).transpose());
+          slot_gradient_.push_back(g);
         }
       }
       first_slot_.push_back(static_cast<int>(slot_node_.size()));
-      if (first_slot_.back() - first_slot_[first_slot_.size() - 2] > 4) enriched_pieces_.push_back(volume_.size() - 1);
+      if (first_slot_.back() - first_slot_[first_slot_.size() - 2] > 4) enriched_pieces_.push_back(num_tets_ + volume_.size() - 1);
     }
-    const double tet_volume = std::abs(det_J) / 6.0;
-    largest_volume_mismatch_ = std::max(largest_volume_mismatch_, std::abs(pieces_volume - tet_volume) / tet_volume);
+    largest_volume_mismatch_ = std::max(largest_volume_mismatch_, std::abs(pieces_volume - whole_->volume[t]) / whole_->volume[t]);
   }
-  // The blocks: the four-slot pieces in order, four at a time.
-  std::vector<std::size_t> simple;
-  for (std::size_t p = 0; p < volume_.size(); ++p) (first_slot_[p + 1] - first_slot_[p] == 4 ? simple : unblocked_).push_back(p);
-  const std::size_t full = simple.size() / 4 * 4;
-  unblocked_.insert(unblocked_.end(), simple.begin() + static_cast<std::ptrdiff_t>(full), simple.end());
-  for (std::size_t k = 0; k < full; k += 4) {
-    PieceBlock block;
-    for (int lane = 0; lane < 4; ++lane) {
-      const std::size_t p = simple[k + static_cast<std::size_t>(lane)];
-      block.piece[lane] = p;
-      block.volume[lane] = volume_[p];
-      for (int a = 0; a < 4; ++a) {
-        const int s = first_slot_[p] + a;
-        block.dof[a][lane] = 3 * slot_node_[s];
-        for (int i = 0; i < 3; ++i) block.gradient[a][i][lane] = slot_gradient_[s][i];
-      }
-    }
-    blocks_.push_back(block);
-  }
+  // The blocks leave the last num_tets_ % 4 whole tets, and the special pieces.
+  for (std::size_t t = 4 * whole_->blocks.size(); t < num_tets_; ++t)
+    if (!special[t]) unblocked_.push_back(t);
+  for (std::size_t q = 0; q < volume_.size(); ++q) unblocked_.push_back(num_tets_ + q);
+}
+
+CorotatedPieces::Slots CorotatedPieces::slots(std::size_t p) const {
+  if (p < num_tets_) return {&whole_->node[4 * p], &whole_->gradient[4 * p], 4};
+  const std::size_t q = p - num_tets_;
+  const auto first = static_cast<std::size_t>(first_slot_[q]);
+  return {&slot_node_[first], &slot_gradient_[first], first_slot_[q + 1] - first_slot_[q]};
 }
 
 Eigen::Matrix3d CorotatedPieces::gradient_sum(const Eigen::VectorXd& q, std::size_t p) const {
+  const Slots slot = slots(p);
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
-  for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) sum.noalias() += q.segment<3>(3 * slot_node_[s]) * slot_gradient_[s].transpose();
+  for (int s = 0; s < slot.count; ++s) sum.noalias() += q.segment<3>(3 * slot.node[s]) * slot.gradient[s].transpose();
   return sum;
 }
 
@@ -125,7 +168,8 @@ double CorotatedPieces::energy_density(const Eigen::Matrix3d& strain) const {
 }
 
 void CorotatedPieces::add_piece_force(std::size_t p, const Eigen::Matrix3d& VP, Eigen::VectorXd& force) const {
-  for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s) force.segment<3>(3 * slot_node_[s]).noalias() += VP * slot_gradient_[s];
+  const Slots slot = slots(p);
+  for (int s = 0; s < slot.count; ++s) force.segment<3>(3 * slot.node[s]).noalias() += VP * slot.gradient[s];
 }
 
 // The symmetric part of a 3x3 matrix.
@@ -133,47 +177,51 @@ static Eigen::Matrix3d symmetric_part(const Eigen::Matrix3d& A) { return 0.5 * (
 
 double CorotatedPieces::energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int, std::vector<Eigen::Matrix3d>& rotations) const {
   f_int.setZero(u.size());
-  if (rotations.size() != volume_.size()) rotations.assign(volume_.size(), Eigen::Matrix3d::Identity());
+  const auto n = static_cast<std::size_t>(num_pieces());
+  if (rotations.size() != n) rotations.assign(n, Eigen::Matrix3d::Identity());
   double W = 0.0;
-  for (std::size_t p = 0; p < volume_.size(); ++p) {
+  for (std::size_t p = 0; p < n; ++p) {
+    if (volume(p) == 0.0) continue; // a special tet's whole piece
     const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + gradient_sum(u, p); // (8.1)
     const Eigen::Matrix3d& R = rotations[p] = warm_rotation(F, rotations[p], rotation_, exact_turn);
     // (8.2), (8.3): the strain R^T F - I, symmetrised against round-off in R; P = R sigma.
     const Eigen::Matrix3d strain = symmetric_part(R.transpose() * F) - Eigen::Matrix3d::Identity();
-    W += volume_[p] * energy_density(strain);
-    add_piece_force(p, volume_[p] * R * stress(strain), f_int);
+    W += volume(p) * energy_density(strain);
+    add_piece_force(p, volume(p) * R * stress(strain), f_int);
   }
   return W;
 }
 
 double CorotatedPieces::warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d,
                                        Eigen::VectorXd& K_d) const {
-  if (rotations.size() != volume_.size())
-    throw std::invalid_argument("CorotatedPieces::warped_product: expected one rotation per piece");
+  const auto n = static_cast<std::size_t>(num_pieces());
+  if (rotations.size() != n) throw std::invalid_argument("CorotatedPieces::warped_product: expected one rotation per piece");
   K_d.setZero(d.size());
   double half_dKd = 0.0;
-  for (std::size_t p = 0; p < volume_.size(); ++p) {
+  for (std::size_t p = 0; p < n; ++p) {
+    if (volume(p) == 0.0) continue;
     // The linear strain sym(R^T D) of the displacement d seen in the piece's turned frame.
     const Eigen::Matrix3d strain = symmetric_part(rotations[p].transpose() * gradient_sum(d, p));
-    half_dKd += volume_[p] * energy_density(strain);
-    add_piece_force(p, volume_[p] * rotations[p] * stress(strain), K_d);
+    half_dKd += volume(p) * energy_density(strain);
+    add_piece_force(p, volume(p) * rotations[p] * stress(strain), K_d);
   }
   return half_dKd;
 }
 
 std::vector<Eigen::Matrix3d> CorotatedPieces::gradient_sums(const Eigen::VectorXd& q) const {
-  std::vector<Eigen::Matrix3d> sums(volume_.size());
-  for (std::size_t p = 0; p < volume_.size(); ++p) sums[p] = gradient_sum(q, p);
+  std::vector<Eigen::Matrix3d> sums(static_cast<std::size_t>(num_pieces()));
+  for (std::size_t p = 0; p < sums.size(); ++p) sums[p] = gradient_sum(q, p);
   return sums;
 }
 
 CorotatedPieces::StepTerms CorotatedPieces::step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums,
                                                        double c, const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
                                                        std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
-  if (reference_sums.size() != volume_.size() || turned.size() != volume_.size())
+  const auto n = static_cast<std::size_t>(num_pieces());
+  if (reference_sums.size() != n || turned.size() != n)
     throw std::invalid_argument("CorotatedPieces::step_terms: expected one reference sum and one rotation per piece");
   force.setZero(u.size());
-  if (rotations.size() != volume_.size()) rotations.assign(volume_.size(), Eigen::Matrix3d::Identity());
+  if (rotations.size() != n) rotations.assign(n, Eigen::Matrix3d::Identity());
   StepTerms terms = block_step_terms(u, reference_sums, c, turned, force, rotations, turn_tolerance);
   for (std::size_t p : unblocked_) {
     const StepTerms piece = piece_step_terms(p, u, reference_sums[p], c, turned[p], force, rotations[p], turn_tolerance);
@@ -194,24 +242,29 @@ CorotatedPieces::StepTerms CorotatedPieces::piece_step_terms(std::size_t p, cons
   const Eigen::Matrix3d& Q = turned;
   const Eigen::Matrix3d rate_strain = symmetric_part(Q.transpose() * (grad_u - reference_sum));
   // One scatter: V (R sigma(strain) + c Q sigma(rate_strain)) g_s.
-  add_piece_force(p, volume_[p] * (R * stress(strain) + c * (Q * stress(rate_strain))), force);
-  return {volume_[p] * energy_density(strain), volume_[p] * energy_density(rate_strain)};
+  const double V = volume(p);
+  add_piece_force(p, V * (R * stress(strain) + c * (Q * stress(rate_strain))), force);
+  return {V * energy_density(strain), V * energy_density(rate_strain)};
 }
 
 Eigen::SparseMatrix<double> CorotatedPieces::laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const {
   std::vector<Eigen::Triplet<double>> entries;
-  for (std::size_t p : pieces)
-    for (int s = first_slot_[p]; s < first_slot_[p + 1]; ++s)
-      for (int r = first_slot_[p]; r < first_slot_[p + 1]; ++r)
-        if (!enrichment_rows_only || slot_node_[s] >= num_mesh_nodes_ || slot_node_[r] >= num_mesh_nodes_)
-          entries.emplace_back(slot_node_[s], slot_node_[r], volume_[p] * slot_gradient_[s].dot(slot_gradient_[r]));
+  for (std::size_t p : pieces) {
+    const double V = volume(p);
+    if (V == 0.0) continue; // a special tet's whole piece adds nothing
+    const Slots slot = slots(p);
+    for (int s = 0; s < slot.count; ++s)
+      for (int r = 0; r < slot.count; ++r)
+        if (!enrichment_rows_only || slot.node[s] >= num_mesh_nodes_ || slot.node[r] >= num_mesh_nodes_)
+          entries.emplace_back(slot.node[s], slot.node[r], V * slot.gradient[s].dot(slot.gradient[r]));
+  }
   Eigen::SparseMatrix<double> L(num_dof_nodes_, num_dof_nodes_);
   L.setFromTriplets(entries.begin(), entries.end());
   return L;
 }
 
 Eigen::SparseMatrix<double> CorotatedPieces::laplacian() const {
-  std::vector<std::size_t> all(volume_.size());
+  std::vector<std::size_t> all(static_cast<std::size_t>(num_pieces()));
   for (std::size_t p = 0; p < all.size(); ++p) all[p] = p;
   return laplacian_of(all, false);
 }

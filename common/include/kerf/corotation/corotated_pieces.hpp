@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 namespace kerf {
@@ -36,12 +37,23 @@ class CutXfemModel;
 /// gives the same W and f_int (tests/chapter_08/test_corotated_pieces.cpp).
 class CorotatedPieces {
 public:
-  /// Every integrated piece of `model` (kept by value: the model may go).
-  /// @throws std::invalid_argument for a Tet10 model or one with branch functions
-  CorotatedPieces(const CutXfemModel& model, const LinearMaterial& material, RotationMethod rotation);
+  /// Every integrated piece of `model` (kept by value: the model may go). Piece t < the mesh's
+  /// number of tets is tet t whole; a tet the cut divides, or whose nodes carry an enrichment on
+  /// it, is special: its whole piece has no volume here and its integrated pieces follow, from
+  /// num_tets() on. `before`, the pieces of an earlier cut of the same mesh (or nullptr), lends its
+  /// whole tets' data, shared and never changed, so that a cut costs what its special tets cost
+  /// and a copy of one number a tet.
+  /// @throws std::invalid_argument for a Tet10 model or one with branch functions, or a `before`
+  ///         of another mesh (another number of tets or nodes)
+  CorotatedPieces(const CutXfemModel& model, const LinearMaterial& material, RotationMethod rotation,
+                  const CorotatedPieces* before = nullptr);
 
   Eigen::Index num_dof_nodes() const { return num_dof_nodes_; }
-  Eigen::Index num_pieces() const { return static_cast<Eigen::Index>(volume_.size()); }
+  /// The mesh's tets (whole pieces 0 ... num_tets() - 1) and the special tets' pieces after them.
+  Eigen::Index num_pieces() const { return static_cast<Eigen::Index>(num_tets_ + volume_.size()); }
+  Eigen::Index num_tets() const { return static_cast<Eigen::Index>(num_tets_); }
+  /// The tets whose pieces are special (the constructor's comment), in increasing order.
+  const std::vector<int>& special_tets() const { return special_tets_; }
 
   /// W(u) (J) and f_int(u) = dW/du (3 num_dof_nodes(), N); the rotation of every piece into
   /// `rotations`. If `rotations` holds one per piece already (the last evaluation's), each is
@@ -82,6 +94,16 @@ public:
   double largest_volume_mismatch() const { return largest_volume_mismatch_; }
 
 private:
+  // The slots of piece p: their DOF nodes and gradients g_s (1/m).
+  struct Slots {
+    const int* node;
+    const Eigen::Vector3d* gradient;
+    int count;
+  };
+  Slots slots(std::size_t p) const;
+  // V_p: a whole tet's volume, 0 where the tet is special; a special piece's.
+  double volume(std::size_t p) const { return p < num_tets_ ? whole_volume_[p] : volume_[p - num_tets_]; }
+
   // sum_s q_s g_s^T over piece p's slots: (8.1) without the identity.
   Eigen::Matrix3d gradient_sum(const Eigen::VectorXd& q, std::size_t p) const;
   // The linear stress sigma = 2 mu strain + lambda tr(strain) I of a symmetric strain, and its
@@ -90,41 +112,50 @@ private:
   double energy_density(const Eigen::Matrix3d& strain) const;
   // Adds V P g_s of piece p to its slots.
   void add_piece_force(std::size_t p, const Eigen::Matrix3d& VP, Eigen::VectorXd& force) const;
-
-  // step_terms of one piece, the scalar way: the pieces with an enrichment slot, those left over
-  // from the blocks, and a block's lane whose rotation needs chapter 2's decomposition.
+  // step_terms of one piece, the scalar way: the special pieces, the whole tets left over from
+  // the blocks, and a block's lane whose rotation needs chapter 2's decomposition.
   StepTerms piece_step_terms(std::size_t p, const Eigen::VectorXd& u, const Eigen::Matrix3d& reference_sum, double c,
                              const Eigen::Matrix3d& turned, Eigen::VectorXd& force, Eigen::Matrix3d& rotation,
                              double turn_tolerance) const;
-  // step_terms of the blocks, four pieces at a time (corotated_piece_blocks.cpp).
+  // step_terms of the blocks, four whole tets at a time (corotated_piece_blocks.cpp).
   StepTerms block_step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums, double c,
                              const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force, std::vector<Eigen::Matrix3d>& rotations,
                              double turn_tolerance) const;
-
   // The Laplacian's entries of the given pieces (triplets summed).
   Eigen::SparseMatrix<double> laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const;
 
   Eigen::Index num_dof_nodes_ = 0;
   Eigen::Index num_mesh_nodes_ = 0;
   double largest_volume_mismatch_ = 0.0;
-  std::vector<std::size_t> enriched_pieces_; // the pieces with an enrichment slot
   double mu_ = 0.0, lambda_ = 0.0;
   RotationMethod rotation_;
-  std::vector<double> volume_;              // V_p
-  std::vector<int> first_slot_;             // piece p's slots are [first_slot_[p], first_slot_[p + 1])
-  std::vector<int> slot_node_;              // the DOF node of each slot
-  std::vector<Eigen::Vector3d> slot_gradient_; // g_s (1/m)
-  // The pieces of four slots (every whole tet, and a cut tet's piece without an enrichment), four
-  // to a block and laid out lane by lane, so that step_terms evaluates four at once with one
-  // vector instruction per operation (corotated_piece_blocks.cpp); the rest go one by one.
+
+  // The whole tets four to a block (tets 4k ... 4k + 3 in block k) and laid out lane by lane, so
+  // that step_terms evaluates four at once with one vector instruction per operation
+  // (corotated_piece_blocks.cpp); the volumes are each body's own (whole_volume_).
   struct PieceBlock {
-    std::size_t piece[4] = {};        // the four pieces, lane by lane
+    std::size_t piece[4] = {};        // the four pieces (tets), lane by lane
     int dof[4][4] = {};               // [slot][lane]: the first DOF (3 node) of the slot
     double gradient[4][3][4] = {};    // [slot][component][lane]: g_s
-    double volume[4] = {};
   };
-  std::vector<PieceBlock> blocks_;
-  std::vector<std::size_t> unblocked_;
+  // What every cut of one mesh shares: each tet's four nodes and gradients, its volume, its block.
+  struct WholeTets {
+    std::vector<int> node;                 // 4 a tet
+    std::vector<Eigen::Vector3d> gradient; // 4 a tet (1/m)
+    std::vector<double> volume;            // |det J| / 6 (m^3)
+    std::vector<PieceBlock> blocks;
+  };
+  std::size_t num_tets_ = 0;
+  std::shared_ptr<const WholeTets> whole_;
+  std::vector<double> whole_volume_;  // each tet's volume, 0 where it is special
+  std::vector<int> special_tets_;
+  // The special tets' pieces, piece num_tets_ + q for q = 0, 1, ...
+  std::vector<double> volume_;              // V_p
+  std::vector<int> first_slot_;             // piece q's slots are [first_slot_[q], first_slot_[q + 1])
+  std::vector<int> slot_node_;              // the DOF node of each slot
+  std::vector<Eigen::Vector3d> slot_gradient_; // g_s (1/m)
+  std::vector<std::size_t> enriched_pieces_; // the pieces with an enrichment slot
+  std::vector<std::size_t> unblocked_;       // the pieces the blocks leave: special ones and the last tets
 };
 
 } // namespace kerf
