@@ -112,6 +112,15 @@ template <class PiecesOf, class GlueOf>
 MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours, PiecesOf pieces_of,
                            GlueOf glue_of);
 
+// Whether two lists of cut triangles are the same triangles, in the same order: the same
+// surface, number and corners (a tet split by the one list is split by the other alike).
+bool same_triangles(const std::vector<CutTriangle>& a, const std::vector<CutTriangle>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a[k].surface != b[k].surface || a[k].triangle != b[k].triangle || a[k].corners != b[k].corners) return false;
+  return true;
+}
+
 // No glue known beforehand.
 const std::vector<PieceGlue>* no_glue(Eigen::Index, int) { return nullptr; }
 
@@ -149,7 +158,14 @@ MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, 
       const int e = previous.entry[static_cast<std::size_t>(t)];
       return e < 0 ? nullptr : &previous.tets[static_cast<std::size_t>(e)];
     }
+    // In the box, the tet may meet an added triangle; if it meets the triangles it met before and
+    // no other (most tets there: the box of a sweep is wide), its pieces are still the previous.
     const std::vector<CutTriangle> triangles = cuts.triangles_meeting_tet(X);
+    const int e = previous.entry[static_cast<std::size_t>(t)];
+    if (e < 0 ? triangles.empty() : same_triangles(previous.tets[static_cast<std::size_t>(e)].triangles, triangles)) {
+      kept[static_cast<std::size_t>(t)] = 1;
+      return e < 0 ? nullptr : &previous.tets[static_cast<std::size_t>(e)];
+    }
     if (triangles.empty()) return nullptr;
     split = split_tet_by_triangles(X, triangles);
     return &*split;

@@ -71,7 +71,8 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, st
 /// state of the same cuts, whose triangles `cuts` keeps, in the same surfaces with the same
 /// numbers, and adds to. A tet whose box misses `changed` (a box holding every triangle added
 /// since) meets the same triangles as before, so its pieces are the previous ones and are
-/// copied; only the others are cut again. The glue is found anew for every tet with an entry
+/// copied; so are those of a tet in the box that meets the same triangles as before and no other;
+/// only the others are cut again. The glue is found anew for every tet with an entry
 /// (it is cheap: faces of cut tets only). The result is that of cut_mesh_into_pieces, at the
 /// cost of the changed region instead of the whole mesh: chapter 7 rebuilds after every tet
 /// the blade crosses. Reuses previous.neighbours.
