@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <optional>
 #include <stdexcept>
 #include <cmath>
 #include <limits>
@@ -104,7 +103,8 @@ MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts) {
 
 namespace {
 
-// The pieces of every tet, from `pieces_of(t, X)` (nullptr: no cut triangle meets it), then the
+// The pieces of every tet, from `pieces_of(t, X)` (nullptr: no cut triangle meets it; pieces a
+// previous MeshPieces holds are shared with it, not copied), then the
 // counts and the glue: the two steps of cut_mesh_into_pieces and recut_mesh_into_pieces. The
 // glue across face a of tet t is `glue_of(t, a)`'s where that is not nullptr (the face's two
 // tets kept their pieces), else found from the face's polygons.
@@ -127,12 +127,10 @@ const std::vector<PieceGlue>* no_glue(Eigen::Index, int) { return nullptr; }
 } // namespace
 
 MeshPieces cut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, std::shared_ptr<const TetNeighbours> neighbours) {
-  std::optional<TetPieces> split;
-  MeshPieces result = pieces_and_glue(mesh, cuts, std::move(neighbours), [&](Eigen::Index, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
+  MeshPieces result = pieces_and_glue(mesh, cuts, std::move(neighbours), [&](Eigen::Index, const Eigen::Matrix<double, 4, 3>& X) -> std::shared_ptr<const TetPieces> {
     const std::vector<CutTriangle> triangles = cuts.triangles_meeting_tet(X);
     if (triangles.empty()) return nullptr;
-    split = split_tet_by_triangles(X, triangles);
-    return &*split;
+    return std::make_shared<const TetPieces>(split_tet_by_triangles(X, triangles));
   }, no_glue);
   result.kept_from_previous.assign(static_cast<std::size_t>(mesh.num_tets()), 0);
   return result;
@@ -149,14 +147,13 @@ MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, 
     grown.min().array() -= margin;
     grown.max().array() += margin;
   }
-  std::optional<TetPieces> split;
   std::vector<unsigned char> kept(static_cast<std::size_t>(mesh.num_tets()), 0);
-  MeshPieces result = pieces_and_glue(mesh, cuts, previous.neighbours, [&](Eigen::Index t, const Eigen::Matrix<double, 4, 3>& X) -> const TetPieces* {
+  const auto previous_pieces = [&](int e) { return e < 0 ? nullptr : previous.tets.share(static_cast<std::size_t>(e)); };
+  MeshPieces result = pieces_and_glue(mesh, cuts, previous.neighbours, [&](Eigen::Index t, const Eigen::Matrix<double, 4, 3>& X) -> std::shared_ptr<const TetPieces> {
     const Eigen::AlignedBox3d box(X.colwise().minCoeff().transpose(), X.colwise().maxCoeff().transpose());
     if (!box.intersects(grown)) {
       kept[static_cast<std::size_t>(t)] = 1;
-      const int e = previous.entry[static_cast<std::size_t>(t)];
-      return e < 0 ? nullptr : &previous.tets[static_cast<std::size_t>(e)];
+      return previous_pieces(previous.entry[static_cast<std::size_t>(t)]);
     }
     // In the box, the tet may meet an added triangle; if it meets the triangles it met before and
     // no other (most tets there: the box of a sweep is wide), its pieces are still the previous.
@@ -164,11 +161,10 @@ MeshPieces recut_mesh_into_pieces(const TetMesh& mesh, const CutSurfaces& cuts, 
     const int e = previous.entry[static_cast<std::size_t>(t)];
     if (e < 0 ? triangles.empty() : same_triangles(previous.tets[static_cast<std::size_t>(e)].triangles, triangles)) {
       kept[static_cast<std::size_t>(t)] = 1;
-      return e < 0 ? nullptr : &previous.tets[static_cast<std::size_t>(e)];
+      return previous_pieces(e);
     }
     if (triangles.empty()) return nullptr;
-    split = split_tet_by_triangles(X, triangles);
-    return &*split;
+    return std::make_shared<const TetPieces>(split_tet_by_triangles(X, triangles));
   }, [&](Eigen::Index t, int a) -> const std::vector<PieceGlue>* {
     // Both tets of the face kept their pieces: so does the face, and its glue is the previous one.
     const int s = previous.neighbours->across(t, a);
@@ -193,7 +189,7 @@ MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::sh
   std::vector<Eigen::Index> last_tet(static_cast<std::size_t>(cuts.num_surfaces()), -1);
   for (Eigen::Index t = 0; t < T; ++t) {
     const Eigen::Matrix<double, 4, 3> X = tet_corners(mesh, t);
-    const TetPieces* split = pieces_of(t, X);
+    std::shared_ptr<const TetPieces> split = pieces_of(t, X);
     if (!split) continue;
     for (const CutTriangle& triangle : split->triangles) {
       const auto s = static_cast<std::size_t>(triangle.surface);
@@ -202,7 +198,7 @@ MeshPieces pieces_and_glue(const TetMesh& mesh, const CutSurfaces& cuts, std::sh
     }
     result.entry[static_cast<std::size_t>(t)] = static_cast<int>(result.tets.size());
     result.entry_tet.push_back(static_cast<int>(t));
-    result.tets.push_back(*split);
+    result.tets.push_back(std::move(split));
   }
   for (Eigen::Index t = 0; t < T; ++t) ++result.state_counts[static_cast<std::size_t>(result.state(t))];
 

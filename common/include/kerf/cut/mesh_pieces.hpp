@@ -20,6 +20,44 @@ struct PieceGlue {
   int piece_b = 0; ///< the piece of the tet across the face
 };
 
+/// The pieces of the tets a cut meets, each held by a shared, immutable pointer: the pieces of a
+/// grown cut share those of the tets it kept with the pieces before it, instead of copying their
+/// cells and polygons (recut_mesh_into_pieces). Read as a vector of TetPieces.
+class SharedTetPieces {
+public:
+  using Items = std::vector<std::shared_ptr<const TetPieces>>;
+  /// Walks the pieces as const TetPieces&.
+  class const_iterator {
+  public:
+    explicit const_iterator(Items::const_iterator at) : at_(at) {}
+    const TetPieces& operator*() const { return **at_; }
+    const TetPieces* operator->() const { return at_->get(); }
+    const_iterator& operator++() {
+      ++at_;
+      return *this;
+    }
+    bool operator==(const const_iterator& other) const { return at_ == other.at_; }
+    bool operator!=(const const_iterator& other) const { return at_ != other.at_; }
+
+  private:
+    Items::const_iterator at_;
+  };
+  const TetPieces& operator[](std::size_t e) const { return *items_[e]; }
+  std::size_t size() const { return items_.size(); }
+  bool empty() const { return items_.empty(); }
+  const_iterator begin() const { return const_iterator(items_.begin()); }
+  const_iterator end() const { return const_iterator(items_.end()); }
+  /// Appends pieces of one's own.
+  void push_back(TetPieces pieces) { items_.push_back(std::make_shared<const TetPieces>(std::move(pieces))); }
+  /// Appends pieces shared with another SharedTetPieces (share(e) of it).
+  void push_back(std::shared_ptr<const TetPieces> pieces) { items_.push_back(std::move(pieces)); }
+  /// The pointer to entry e, to share it.
+  const std::shared_ptr<const TetPieces>& share(std::size_t e) const { return items_[e]; }
+
+private:
+  Items items_;
+};
+
 /// The mesh cut into pieces.
 ///
 /// A tet that no cut triangle meets is one whole piece (piece 0) and has no entry. Across a face
@@ -32,7 +70,7 @@ struct MeshPieces {
   std::shared_ptr<const TetNeighbours> neighbours;
   std::vector<int> entry;               ///< #T: index into `tets`, -1 for a tet no cut triangle meets
   std::vector<int> entry_tet;           ///< the tet of each entry
-  std::vector<TetPieces> tets;          ///< the pieces of each tet with an entry
+  SharedTetPieces tets;                 ///< the pieces of each tet with an entry
   /// Per entry and face (opposite corner a): the glued pairs across it, piece_a of this tet,
   /// piece_b of the tet across (empty on the boundary). Between two entries, each holds the
   /// face's pairs from its own side.
