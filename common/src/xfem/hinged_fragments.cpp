@@ -75,10 +75,16 @@ std::vector<HingedFragment> hinged_fragments(const CutXfemModel& model, const Do
   Fragments fragments(model.num_dof_nodes());
   std::vector<double> volumes; // of every integrated piece, tet by tet
   std::vector<int> corners;    // their phantom nodes, n a piece
+  // A tet with no slot but its nodes' (most of them) is one piece whose phantom nodes are its
+  // nodes: read from the mesh, without asking the model piece by piece.
+  const TetMatrix& slots = model.assembly_slots();
+  const auto plain = [&](Eigen::Index t) { return slots.cols() == n || slots(t, n) < 0; };
+  volumes.reserve(static_cast<std::size_t>(mesh.num_tets()));
+  corners.reserve(static_cast<std::size_t>(n * mesh.num_tets()));
   for (Eigen::Index t = 0; t < mesh.num_tets(); ++t)
     for (int p = 0; p < model.num_integrated_pieces(t); ++p) {
       volumes.push_back(model.integrated_volume(t, p));
-      for (int a = 0; a < n; ++a) corners.push_back(model.phantom_node(t, p, a));
+      for (int a = 0; a < n; ++a) corners.push_back(plain(t) ? mesh.tets(t, a) : model.phantom_node(t, p, a));
       if (!(volumes.back() > 0.0)) continue;
       const int* c = &corners[corners.size() - static_cast<std::size_t>(n)];
       for (int a = 1; a < n; ++a) fragments.join(c[a], c[0]);
