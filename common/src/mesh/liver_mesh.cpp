@@ -40,14 +40,18 @@ LiverDomain liver_domain(LiverShape shape) {
   return {liver_wedge_phi, centre, 1.1 * 0.5 * box.diagonal().norm(), implicit_volume(liver_wedge_phi, box, 0.002)};
 }
 
-double liver_regular_edge(int target_tets, LiverShape shape) {
+namespace {
+
+// The regular edge and the sizing for a liver of `volume` (m^3): the domain's grid count is made
+// once per mesh, not once per question.
+double regular_edge(int target_tets, double volume) {
   require_target(target_tets);
   // V_regular = L^3 / (6 sqrt 2), so L = (6 sqrt(2) V / T)^(1/3).
-  return std::cbrt(6.0 * std::sqrt(2.0) * liver_domain(shape).volume / target_tets);
+  return std::cbrt(6.0 * std::sqrt(2.0) * volume / target_tets);
 }
 
-ImplicitMeshSizing liver_mesh_sizing(int target_tets, LiverShape shape) {
-  const double L = liver_regular_edge(target_tets, shape);
+ImplicitMeshSizing sizing_for(int target_tets, double volume) {
+  const double L = regular_edge(target_tets, volume);
   ImplicitMeshSizing sizing;
   sizing.cell_size = cell_size_over_circumradius * std::sqrt(6.0) / 4.0 * L;
   sizing.facet_size = facet_size_over_cell_size * sizing.cell_size;
@@ -57,10 +61,22 @@ ImplicitMeshSizing liver_mesh_sizing(int target_tets, LiverShape shape) {
   return sizing;
 }
 
+} // namespace
+
+double liver_regular_edge(int target_tets, LiverShape shape) {
+  require_target(target_tets);
+  return regular_edge(target_tets, liver_domain(shape).volume);
+}
+
+ImplicitMeshSizing liver_mesh_sizing(int target_tets, LiverShape shape) {
+  require_target(target_tets);
+  return sizing_for(target_tets, liver_domain(shape).volume);
+}
+
 TetMesh make_liver_mesh(int target_tets, LiverShape shape, const ImplicitMeshOptimisation& optimisation) {
-  const ImplicitMeshSizing sizing = liver_mesh_sizing(target_tets, shape);
+  require_target(target_tets);
   const LiverDomain domain = liver_domain(shape);
-  return mesh_implicit_domain(domain.phi, domain.centre, domain.radius, sizing, optimisation);
+  return mesh_implicit_domain(domain.phi, domain.centre, domain.radius, sizing_for(target_tets, domain.volume), optimisation);
 }
 
 } // namespace kerf
