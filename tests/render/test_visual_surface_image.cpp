@@ -7,6 +7,7 @@
 #include "support/cut_body.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/implicit_surface_mesh.hpp"
+#include "kerf/render/cutting_window.hpp"
 #include "kerf/render/organ_view.hpp"
 #include "kerf/render/surface_image.hpp"
 #include "kerf/render/triangle_surface_polydata.hpp"
@@ -18,6 +19,7 @@
 
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
+#include <vtkRenderWindow.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -160,4 +162,33 @@ TEST_CASE("the organ view draws the blade in steel where it is given, and nothin
   CHECK(changed > 20);
   CHECK(grey >= 0.8 * changed);
   CHECK(changed_after == 0);
+}
+
+TEST_CASE("the window's blade stands where the mouse points at the organ, whether or not the blade is drawn there") {
+  // Shift + press at the window's centre over the sphere of 5 cm radius: the blade's edge runs
+  // along the line of sight from 3 cm in front of the skin. Drawn, that edge lies under the cursor
+  // itself; the next pick must still find the skin (the blade is not pickable), not the bar's near
+  // end 3 cm closer to the camera, or each frame would pull the edge out of the tissue.
+  kerf::TriangleSurface organ = sphere();
+  organ.vertices *= 0.05;
+  kerf::OrganViewSettings settings;
+  settings.width = 240;
+  settings.height = 180;
+  settings.on_screen = true;
+  kerf::OrganView view(organ, settings);
+  kerf::CuttingWindow window(view, 0.06);
+  view.show(organ, kerf::TriangleSurface{});
+  view.window().Render();
+  window.deliver({0.0, kerf::WindowEvent::press, 120, 90, true});
+  const std::optional<kerf::BladeEdge> first = window.blade();
+  REQUIRE(first);
+  view.show(organ, kerf::TriangleSurface{}, first);
+  view.window().Render();
+  const std::optional<kerf::BladeEdge> second = window.blade();
+  REQUIRE(second);
+  MESSAGE("edge start " << first->start.transpose() << ", then " << second->start.transpose());
+  // The skin point under the cursor is 3 cm behind the edge's start, on the sphere.
+  const Eigen::Vector3d skin = first->start + 0.03 * (first->end - first->start).normalized();
+  CHECK(skin.norm() == doctest::Approx(0.05).epsilon(0.05));
+  CHECK((second->start - first->start).norm() < 1e-3);
 }

@@ -96,6 +96,9 @@ OrganView::OrganView(const TriangleSurface& at_rest, const OrganViewSettings& se
   look(*data_->blade, steel_colour);
   data_->blade->GetProperty()->SetSpecular(0.6);
   data_->blade->SetVisibility(0);
+  // The window picks the organ under the mouse; the blade drawn along the line of sight under it
+  // would be picked first and pull the next edge out towards the camera.
+  data_->blade->PickableOff();
   // The inside of the skin shows through the gap of an opened cut: the back faces get the
   // walls' colour, darker, so that a look into the wound reads as tissue.
   vtkNew<vtkProperty> inside;
