@@ -11,7 +11,16 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+#include <optional>
+
 namespace kerf {
+
+namespace {
+// How far the cursor moves after the press before the blade is put down (the stroke_pixels of
+// cutting_window.hpp).
+constexpr double stroke_pixels = 8.0;
+} // namespace
 
 struct CuttingWindow::Data {
   OrganView& view;
@@ -20,7 +29,10 @@ struct CuttingWindow::Data {
   vtkNew<vtkCellPicker> picker;
   vtkNew<vtkCallbackCommand> events, timer;
   bool cutting = false, turning = false, closed = false;
+  bool stroke = false;         // the cursor has moved stroke_pixels since the press that cuts
+  std::optional<double> hand_distance; // the blade's distance from the eye in this stroke (m)
   int x = 0, y = 0;
+  int press_x = 0, press_y = 0;
   std::function<void()> tick;
 
   Data(OrganView& v, double d) : view(v), depth(d) {}
@@ -29,8 +41,15 @@ struct CuttingWindow::Data {
   void on_event(unsigned long event) {
     int ex = 0, ey = 0;
     interactor->GetEventPosition(ex, ey);
-    if (event == vtkCommand::LeftButtonPressEvent) (interactor->GetShiftKey() ? cutting : turning) = true;
-    if (event == vtkCommand::LeftButtonReleaseEvent) cutting = turning = false;
+    if (event == vtkCommand::LeftButtonPressEvent) {
+      (interactor->GetShiftKey() ? cutting : turning) = true;
+      stroke = false;
+      hand_distance.reset();
+      press_x = ex;
+      press_y = ey;
+    }
+    if (event == vtkCommand::LeftButtonReleaseEvent) cutting = turning = stroke = false;
+    if (event == vtkCommand::MouseMoveEvent && cutting && std::hypot(ex - press_x, ey - press_y) >= stroke_pixels) stroke = true;
     if (event == vtkCommand::MouseMoveEvent && turning) {
       vtkCamera* camera = view.renderer().GetActiveCamera();
       camera->Azimuth(-0.4 * (ex - x));
@@ -71,12 +90,28 @@ CuttingWindow::~CuttingWindow() { data_->interactor->Delete(); }
 
 std::optional<BladeEdge> CuttingWindow::blade() {
   Data& d = *data_;
-  if (!d.cutting || !d.picker->Pick(d.x, d.y, 0.0, &d.view.renderer())) return std::nullopt;
-  double picked[3], camera[3];
-  d.picker->GetPickPosition(picked);
-  d.view.renderer().GetActiveCamera()->GetPosition(camera);
-  const Eigen::Vector3d p(picked[0], picked[1], picked[2]), c(camera[0], camera[1], camera[2]);
-  const Eigen::Vector3d direction = (p - c).normalized();
+  if (!d.cutting || !d.stroke) return std::nullopt;
+  vtkRenderer& renderer = d.view.renderer();
+  double camera[3];
+  renderer.GetActiveCamera()->GetPosition(camera);
+  const Eigen::Vector3d c(camera[0], camera[1], camera[2]);
+  // The hand's distance from the eye: the skin's under the cursor, found once per stroke, when
+  // the cursor first lies over the organ. After that the skin moving under the blade (the organ
+  // sags, the wound opens) does not move it: a scalpel is held by the hand, not by the tissue.
+  if (!d.hand_distance) {
+    if (!d.picker->Pick(d.x, d.y, 0.0, &renderer)) return std::nullopt;
+    double picked[3];
+    d.picker->GetPickPosition(picked);
+    d.hand_distance = (Eigen::Vector3d(picked[0], picked[1], picked[2]) - c).norm();
+  }
+  // The line of sight through the cursor: from the eye through the cursor's point on the near
+  // plane.
+  renderer.SetDisplayPoint(d.x, d.y, 0.0);
+  renderer.DisplayToWorld();
+  double near[4];
+  renderer.GetWorldPoint(near);
+  const Eigen::Vector3d direction = (Eigen::Vector3d(near[0], near[1], near[2]) / near[3] - c).normalized();
+  const Eigen::Vector3d p = c + *d.hand_distance * direction;
   return BladeEdge{p - 0.03 * direction, p + d.depth * direction};
 }
 

@@ -45,8 +45,13 @@ bool BladeCut::advance(const CutXfemModel& model, const PointLocator& locator, c
   } else {
     if (!sheet_open_) {
       sheets_.emplace_back(quad_length_);
-      const BladeEdge before = outside_edge_ ? *outside_edge_ : *world;
-      sheets_.back().offer({blade.anchor.map(before.start), blade.anchor.map(before.end)});
+      // Entering from outside: the sheet starts at the edge outside the skin. Put down in the
+      // tissue (the window's press), it starts where the blade is: the anchor's map of this
+      // frame's world edge is not its pull-back (they differ by the body's deformation, centimetres
+      // in a sagging liver), and a first quad between them would point the cut a way the hand
+      // never moved, and the sheet refuses quads that fold back against its first.
+      if (outside_edge_) sheets_.back().offer({blade.anchor.map(outside_edge_->start), blade.anchor.map(outside_edge_->end)});
+      else sheets_.back().offer(blade.edge);
       sheet_open_ = true;
     }
     added = sheets_.back().offer(blade.edge, last);

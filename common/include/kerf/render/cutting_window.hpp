@@ -1,9 +1,15 @@
 /// @file cutting_window.hpp
 /// @brief The interactive window in which the mouse is the blade: Shift + left drag cuts, a drag alone turns the camera, q closes.
 ///
-/// While Shift and the left button are held over the organ, the blade's edge stands along the
-/// view direction through the point under the cursor: from 3 cm in front of the surface to a
-/// given depth behind it, so the cut follows the cursor across the picture. Elsewhere the camera
+/// While Shift and the left button are held, the blade's edge stands along the line of sight
+/// through the cursor, from 3 cm in front of the skin to a given depth behind it, so the cut
+/// follows the cursor across the picture. The blade is put down once the cursor has moved 8
+/// pixels from the press, at the distance from the eye of the skin then under the cursor; for the
+/// rest of the stroke the hand holds it at that distance, whatever the tissue under it does. A
+/// blade re-placed on the skin at every frame would follow the organ as it sags and the wound as
+/// it opens (through the wound, to the far wall): motions of centimetres the hand never made,
+/// which set the cut's direction before the hand's stroke, and the sheet then refuses that stroke
+/// as folding back (cut/cut_sheet.hpp). Elsewhere the camera
 /// turns with the mouse. The interactor is used alone, without one of VTK's interactor styles:
 /// their module (InteractionStyle) would bring MPI's C bindings into the build with Debian's
 /// VTK 9.1 (CMakeLists.txt); the two things a style would do here, turn the camera and close
@@ -32,8 +38,9 @@ public:
   CuttingWindow(const CuttingWindow&) = delete;
   CuttingWindow& operator=(const CuttingWindow&) = delete;
 
-  /// The blade's world edge while Shift + the left button are held over the organ (a pick of
-  /// what was last drawn), none otherwise.
+  /// The blade's world edge while Shift + the left button are held and the cursor has moved since
+  /// the press, once the stroke has passed over the organ (a pick of what was last drawn), none
+  /// otherwise.
   std::optional<BladeEdge> blade();
   /// Whether Shift + the left button are held (cutting, whether over the organ or not).
   bool cutting() const;

@@ -13,7 +13,9 @@
 ///   anchor, so that the sheet begins outside the skin and the cut is open there;
 /// - inside: the edge is offered to the sheet;
 /// - away (the hand lifted the blade): the sheet, if open, ends where it is, and the next contact
-///   starts a new one at its own edge.
+///   starts a new one at its own edge;
+/// - put down in the tissue (no frame outside before it, as when the window's button is pressed
+///   over the organ): a new sheet starts at this frame's pulled-back edge.
 #pragma once
 
 #include "kerf/cut/blade_path.hpp"
