@@ -319,7 +319,53 @@ TEST_CASE("many passes: 1000 steps with the blade cutting, and where 4 iteration
                                                         << " J at 12 (gravity's work " << energy_12.at("external_work") << " J)");
     CHECK(rest_4 < -0.2 * energy_12.at("external_work"));
     CHECK(energy_12.at("numerical") > 0.0);
+    // Newmark's numerical damping, gamma = 0.6 and beta = (gamma + 1/2)^2 / 4, damps the slabs'
+    // fast modes, which four iterations then need not follow: they dissipate (measured: +0.024 J;
+    // gamma = 0.55, the demo's, is not enough here: -0.22 J).
+    deep["time"]["iterations"] = 4;
+    deep["time"]["gamma"] = 0.6;
+    deep["time"]["beta"] = 0.3025;
+    const auto damped = run_scene(chapter_08, deep, dir, "deep_damped");
+    INFO(damped.out, damped.err);
+    REQUIRE(damped.exit_status == 0);
+    check_energy_bounded(dir / "deep_damped" / "energy.csv");
+    const double rest_damped = read_table(dir / "deep_damped" / "energy.csv").back().at("numerical");
+    MESSAGE("4 iterations a step at gamma = 0.6: " << rest_damped << " J");
+    CHECK(rest_damped > 0.0);
   }
+}
+
+TEST_CASE("the demo's numerical damping: on the wedge at 10k tets, four iterations a step make energy under the average acceleration rule") {
+  // The demo's scene, 200 steps (the blade from 0.5 s to 2 s), frames off: as it is (gamma =
+  // 0.55) and with the average acceleration rule (gamma = 1/2, beta = 1/4). Under the latter the
+  // wedge's small tets and the cut's slivers ring (their accelerations change sign every step),
+  // four iterations from a_{n+1} = a_n do not follow them, and steps make energy: the energy
+  // check solves many on (measured: 79 steps of more than 8 evaluations) and the rest of the
+  // balance ends negative (-10 mJ). With gamma = 0.55 no step is sent on and the step dissipates,
+  // as chapter 7's Newton step does (measured: +10 mJ).
+  const auto dir = kerf_test::fresh_dir("chapter08_damping");
+  json scene = read_json(source_dir / "examples" / "08_liver_real_time.json");
+  scene["time"]["steps"] = 200;
+  scene["render"] = {{"every", 0}};
+  scene["output"] = {{"every", 200}};
+  const auto run = [&](const json& s, const std::string& name) {
+    const auto result = run_scene(chapter_08, s, dir, name);
+    INFO(result.out, result.err);
+    REQUIRE(result.exit_status == 0);
+    int sent_on = 0;
+    for (const auto& r : read_table(dir / name / "timings.csv")) sent_on += r.at("iterations") > 8;
+    const double rest = read_table(dir / name / "energy.csv").back().at("numerical");
+    MESSAGE(name << ": " << sent_on << " steps sent on, the rest of the balance " << rest << " J");
+    return std::pair{sent_on, rest};
+  };
+  const auto [damped_sent_on, damped_rest] = run(scene, "gamma_055");
+  scene["time"]["gamma"] = 0.5;
+  scene["time"]["beta"] = 0.25;
+  const auto [average_sent_on, average_rest] = run(scene, "average_acceleration");
+  CHECK(damped_sent_on == 0);
+  CHECK(damped_rest > 0.0);
+  CHECK(average_sent_on >= 20);
+  CHECK(average_rest < 0.0);
 }
 
 TEST_CASE("the window under xvfb-run, paced by the wall clock, driven by events keyed by time") {
@@ -350,17 +396,19 @@ TEST_CASE("the window under xvfb-run, paced by the wall clock, driven by events 
     std::smatch match;
     REQUIRE(std::regex_search(result.out, match, summary));
     // Simulated time is wall time: the last step's t within 5 % of its wall clock (measured:
-    // 3.09 s in 3.09 s, factor 0.9999), and every step waits for its time, so none is ahead.
+    // 3.11 s in 3.11 s, factor 0.9998), and every step waits for its time, so none is ahead.
     const auto timings = read_table(dir / name / "timings.csv");
     REQUIRE(timings.size() > 200);
     CHECK(timings.back().at("t") == doctest::Approx(timings.back().at("wall_s")).epsilon(0.05));
     for (const auto& r : timings) CHECK(r.at("wall_s") >= r.at("t") - 1e-4);
-    CHECK(std::stod(match[4]) >= 20); // frames drawn: the window did not wait for the steps (measured: 122)
+    CHECK(std::stod(match[4]) >= 20); // frames drawn: the window did not wait for the steps (measured: 156)
     return std::stoi(match[5]);
   };
   const int cut = play(true), turned = play(false);
   MESSAGE("tets cut by the Shift drag: " << cut << ", by the plain drag: " << turned);
-  CHECK(cut > 0);
+  // The Shift drag cuts along its 160 pixels across the organ (measured: 188 tets in 20
+  // changes of topology); the plain drag turns the camera and cuts nothing.
+  CHECK(cut >= 100);
   CHECK(turned == 0);
 }
 
