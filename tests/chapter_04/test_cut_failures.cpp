@@ -18,6 +18,7 @@
 #include "kerf/xfem/surface_enrichment.hpp"
 
 #include "support/cut_body.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -176,8 +177,8 @@ TEST_CASE("per-enrichment volumes: V_enr is chapter 3's plane clipping of the no
     }
     CAPTURE(k);
     // Two computations of the same polyhedra's volumes (convex cells and sub-tets): round-off.
-    CHECK(volumes.enriched[static_cast<std::size_t>(k)] == doctest::Approx(far).epsilon(1e-12));
-    CHECK(volumes.support[static_cast<std::size_t>(k)] == doctest::Approx(support).epsilon(1e-12));
+    CHECK(volumes.enriched[static_cast<std::size_t>(k)] == kerf_test::relative(far, 1e-12));
+    CHECK(volumes.support[static_cast<std::size_t>(k)] == kerf_test::relative(support, 1e-12));
     CHECK(volumes.fraction(k) > kerf::chapter3_sliver_fraction); // no sliver: even 1e-4 constrains nothing here
   }
   CHECK(kerf::sliver_enrichments(volumes, kerf::default_sliver_fraction).empty());
@@ -267,7 +268,7 @@ TEST_CASE("a cut a hair short of the side face: a gap above the snap leaves the 
       for (const kerf::TetPieces& tp : body.pieces.tets) {
         double sum = 0.0;
         for (const kerf::TetPiece& piece : tp.pieces) sum += piece.volume;
-        CHECK(sum == doctest::Approx(tp.volume).epsilon(1e-12));
+        CHECK(sum == kerf_test::relative(tp.volume, 1e-12));
       }
       const std::vector<kerf::DirichletNodes> conditions{
           {nodes_where(body.mesh, [](const Eigen::Vector3d& x) { return x.z() < 1e-12; }), {0, 0, 0}},
@@ -301,7 +302,7 @@ TEST_CASE("a cut a hair short of the side face: a gap above the snap leaves the 
         return opening_of(kerf::solve_linear_cut_xfem(body.model, kerf::make_cut_xfem_dof_map(body.model, conditions, guard),
                                                       Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes()), {}));
       };
-      CHECK(guarded_opening(kerf::default_sliver_fraction) == doctest::Approx(opening).epsilon(1e-9));
+      CHECK(guarded_opening(kerf::default_sliver_fraction) == kerf_test::relative(opening, 1e-9));
       const double glued = guarded_opening(kerf::chapter3_sliver_fraction);
       // The gap of 3e-14 m (delta = 1e-12) is below the splitting's snap, 1e-12 of a tet's
       // longest edge (5.9e-14 m here): the cut is taken to reach the face, as for delta <= 0.
@@ -315,7 +316,7 @@ TEST_CASE("a cut a hair short of the side face: a gap above the snap leaves the 
         // Separated: every crossed tet is completely cut, and the part above moves with the top
         // face, rigidly: the opening is the lift to round-off.
         CHECK(body.pieces.count(kerf::SurfaceCutState::partially_cut) == 0);
-        CHECK(opening == doctest::Approx(lift).epsilon(1e-9));
+        CHECK(opening == kerf_test::relative(lift, 1e-9));
         CHECK(glued < (1.0 - 1e-4) * lift);
       }
     }

@@ -5,6 +5,7 @@
 #include "kerf/cut/cut_surfaces.hpp"
 #include "kerf/cut/rectangle_cut.hpp"
 #include "kerf/mesh/box_mesh.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -48,7 +49,7 @@ TEST_CASE("a rectangle ending mid-element has one straight front: the edge insid
   const kerf::RectangleCut cut({-0.1, -0.1, 0.55}, {0.5, 0, 0}, {0, 1.2, 0});
   const kerf::CrackFronts fronts = fronts_of(mesh, {kerf::rectangle_surface(cut)});
   REQUIRE(fronts.polylines.size() == 1);
-  CHECK(fronts.length() == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(1.0, 1e-12));
   const kerf::FrontPolyline& line = fronts.polylines[0];
   CHECK_FALSE(line.closed);
   for (const kerf::FrontSegment& s : line.segments) {
@@ -79,7 +80,7 @@ TEST_CASE("a rectangle ending mid-element has one straight front: the edge insid
   CHECK(fronts.polar({0.2, 0.5, 0.55}, +1).theta == pi);
   CHECK(fronts.polar({0.2, 0.5, 0.55 + 1e-9}).theta > 0.0);
   CHECK(fronts.polar({0.2, 0.5, 0.55 - 1e-9}).theta < 0.0);
-  CHECK(fronts.distance({0.4, 0.5, 0.75}) == doctest::Approx(0.2).epsilon(1e-14));
+  CHECK(fronts.distance({0.4, 0.5, 0.75}) == kerf_test::relative(0.2, 1e-14));
 }
 
 TEST_CASE("edges outside the mesh or in its skin are not front; a flipped rectangle flips c, not a") {
@@ -88,7 +89,7 @@ TEST_CASE("edges outside the mesh or in its skin are not front; a flipped rectan
   const kerf::RectangleCut flush({0, 0, 0.55}, {0.4, 0, 0}, {0, 1, 0});
   const kerf::CrackFronts f1 = fronts_of(mesh, {kerf::rectangle_surface(flush)});
   REQUIRE(f1.polylines.size() == 1);
-  CHECK(f1.length() == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(f1.length() == kerf_test::relative(1.0, 1e-12));
   CHECK((f1.polylines[0].segments[0].a - Eigen::Vector3d(1, 0, 0)).norm() < 1e-14);
   // The same rectangle with its edges swapped: normal -z, so b = -z, a still +x, c = a x b = +y.
   const kerf::RectangleCut flipped({0, 0, 0.55}, {0, 1, 0}, {0.4, 0, 0});
@@ -112,14 +113,14 @@ TEST_CASE("a rectangle inside the mesh has one closed front of four segments; tw
   REQUIRE(loop.polylines.size() == 1);
   CHECK(loop.polylines[0].closed);
   CHECK(loop.num_segments() == 4);
-  CHECK(loop.length() == doctest::Approx(1.8).epsilon(1e-12));
+  CHECK(loop.length() == kerf_test::relative(1.8, 1e-12));
   // Every segment's a points out of the rectangle: from its centre to the segment's middle.
   const Eigen::Vector3d centre(0.45, 0.5, 0.45);
   for (const kerf::FrontSegment& s : loop.polylines[0].segments) CHECK(s.a.dot(0.5 * (s.start + s.end) - centre) > 0.0);
   const kerf::RectangleCut other({-0.5, -0.5, 0.8}, {1.2, 0, 0}, {0, 2, 0});
   const kerf::CrackFronts two = fronts_of(mesh, {kerf::rectangle_surface(inner), kerf::rectangle_surface(other)});
   CHECK(two.polylines.size() == 2);
-  CHECK(two.length() == doctest::Approx(1.8 + 1.0).epsilon(1e-12));
+  CHECK(two.length() == kerf_test::relative(1.8 + 1.0, 1e-12));
 }
 
 TEST_CASE("a curved front: the arc inside the box, with polar coordinates continuous across its vertices") {
@@ -143,7 +144,7 @@ TEST_CASE("a curved front: the arc inside the box, with polar coordinates contin
     const double t0 = std::clamp((0.0 - p.y()) / (q.y() - p.y()), 0.0, 1.0), t1 = std::clamp((1.0 - p.y()) / (q.y() - p.y()), 0.0, 1.0);
     expected += std::abs(t1 - t0) * (q - p).norm();
   }
-  CHECK(fronts.length() == doctest::Approx(expected).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(expected, 1e-12));
   CHECK(std::abs(std::abs(line.points.front().y() - 0.5) - 0.5) < 1e-12);
   CHECK(std::abs(std::abs(line.points.back().y() - 0.5) - 0.5) < 1e-12);
   for (const kerf::FrontSegment& s : line.segments) {
@@ -219,7 +220,7 @@ TEST_CASE("a straight front of a twisted cut: theta continuous where a frame con
   }
   const kerf::CrackFronts fronts = fronts_of(mesh, {strip});
   REQUIRE(fronts.polylines.size() == 1);
-  CHECK(fronts.length() == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(1.0, 1e-12));
   const kerf::FrontPolyline& line = fronts.polylines[0];
   for (const double psi : {0.5, 2.5, -2.0}) {
     const double rho = 0.1;

@@ -11,6 +11,7 @@
 #include "kerf/mesh/point_locator.hpp"
 
 #include "support/tip_body.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -186,7 +187,7 @@ TEST_CASE("a front along mesh edges: its tets are those around the edges, Willia
   const kerf::CutSurfaces cuts({support::half_plane_behind(front)});
   const kerf::CrackFronts fronts = kerf::find_crack_fronts(mesh, cuts);
   REQUIRE(fronts.polylines.size() == 1);
-  CHECK(fronts.length() == doctest::Approx(0.2).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(0.2, 1e-12));
   // Every tet holding a whole vertical edge of the column holds the front along it.
   double expected = 0.0;
   std::set<int> around_edges;
@@ -201,7 +202,7 @@ TEST_CASE("a front along mesh edges: its tets are those around the edges, Willia
       for (int a = 0; a < 4; ++a) around_edges.insert(mesh.tets(t, a));
     }
   }
-  CHECK(summed_front_in_tets(mesh, fronts) == doctest::Approx(expected).epsilon(1e-12));
+  CHECK(summed_front_in_tets(mesh, fronts) == kerf_test::relative(expected, 1e-12));
   const kerf::MeshPieces pieces = kerf::cut_mesh_into_pieces(mesh, cuts);
   const kerf::BranchEnrichment topological = kerf::make_branch_enrichment(mesh, pieces, fronts, kerf::TipEnrichmentRule::topological);
   CHECK(std::set<int>(topological.branch_node.begin(), topological.branch_node.end()) == around_edges);
@@ -219,9 +220,9 @@ TEST_CASE("a front exactly through a node: its length and tets are right, F = 0 
   const kerf::CrackFronts fronts = kerf::find_crack_fronts(mesh, cuts);
   REQUIRE(fronts.polylines.size() == 1);
   // It leaves through the top and the bottom: length 0.2 / c_z.
-  CHECK(fronts.length() == doctest::Approx(0.2 / c.z()).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(0.2 / c.z(), 1e-12));
   // A line in general position meets each tet in a segment of its own: the pieces add up to the length.
-  CHECK(summed_front_in_tets(mesh, fronts) == doctest::Approx(0.2 / c.z()).epsilon(1e-12));
+  CHECK(summed_front_in_tets(mesh, fronts) == kerf_test::relative(0.2 / c.z(), 1e-12));
   const kerf::MeshPieces pieces = kerf::cut_mesh_into_pieces(mesh, cuts);
   const kerf::BranchEnrichment topological = kerf::make_branch_enrichment(mesh, pieces, fronts, kerf::TipEnrichmentRule::topological);
   int node = -1;
@@ -250,9 +251,9 @@ TEST_CASE("a front lying in mesh faces: the tets on both sides hold it, and the 
   const kerf::CutSurfaces cuts({support::half_plane_behind(front)});
   const kerf::CrackFronts fronts = kerf::find_crack_fronts(mesh, cuts);
   REQUIRE(fronts.polylines.size() == 1);
-  CHECK(fronts.length() == doctest::Approx(0.2).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(0.2, 1e-12));
   // A point of a face lies in the two tets beside it: twice the length.
-  CHECK(summed_front_in_tets(mesh, fronts) == doctest::Approx(0.4).epsilon(1e-12));
+  CHECK(summed_front_in_tets(mesh, fronts) == kerf_test::relative(0.4, 1e-12));
   // The front tets are the tets with a face in the squares x = 0.1, y in [-0.1, 0.1] (one on
   // each side of each of their triangles): the branch nodes are their nodes.
   std::set<int> beside_faces;
@@ -321,7 +322,7 @@ TEST_CASE("a cut whose boundary leaves the mesh: only the inside part is front, 
   const kerf::FrontPolyline& line = fronts.polylines[0];
   CHECK_FALSE(line.closed);
   CHECK(line.segments.size() == 2);
-  CHECK(fronts.length() == doctest::Approx(0.45).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(0.45, 1e-12));
   // Its ends lie on the skin, where the rectangle's boundary leaves the slab.
   const Eigen::Vector3d end_1(-0.3, 0.0, 0.05), end_2(0.0, 0.0, 0.2);
   const Eigen::Vector3d first = line.points.front(), last = line.points.back();
@@ -340,7 +341,7 @@ TEST_CASE("two fronts in one tet: a narrow slit whose two ends share tets, solva
   const kerf::TetMesh mesh = slab();
   const kerf::CrackFronts fronts = kerf::find_crack_fronts(mesh, kerf::CutSurfaces({slit}));
   REQUIRE(fronts.polylines.size() == 2);
-  CHECK(fronts.length() == doctest::Approx(0.4).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(0.4, 1e-12));
   const int shared = tets_holding_two_fronts(mesh, fronts);
   MESSAGE("slit: " << shared << " tets hold both fronts");
   CHECK(shared > 0);
@@ -358,7 +359,7 @@ TEST_CASE("two fronts in one tet: two cuts whose fronts pass the same tets: solv
   const kerf::TetMesh mesh = slab();
   const kerf::CrackFronts fronts = kerf::find_crack_fronts(mesh, kerf::CutSurfaces({cut_a, cut_b}));
   REQUIRE(fronts.polylines.size() == 2);
-  CHECK(fronts.length() == doctest::Approx(0.4).epsilon(1e-12));
+  CHECK(fronts.length() == kerf_test::relative(0.4, 1e-12));
   const int shared = tets_holding_two_fronts(mesh, fronts);
   MESSAGE("two cuts: " << shared << " tets hold both fronts");
   CHECK(shared > 0);

@@ -5,6 +5,7 @@
 // the corotated force and shrinks like dt^2 (test_corotated_steps.cpp derives both orders on a
 // cut block; here they are measured on the demo's own scene, in the columns a student reads).
 #include "support/run_program.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -79,7 +80,7 @@ TEST_CASE("the demo flap's energy rest: the frozen-rotation step's is first orde
     std::vector<double> rest, work, damped;
     for (const double dt : {demo_dt, demo_dt / 2}) {
       const auto rows = energy_rows(corotation + "_" + std::to_string(std::lround(dt * 1e4)), demo_scene(dt, duration, corotation));
-      REQUIRE(rows.back()[t] == doctest::Approx(duration).epsilon(1e-12));
+      REQUIRE(rows.back()[t] == kerf_test::relative(duration, 1e-12));
       rest.push_back(rows.back()[numerical]);
       work.push_back(rows.back()[external_work]);
       damped.push_back(rows.back()[damping]);

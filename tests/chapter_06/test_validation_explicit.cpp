@@ -12,6 +12,7 @@
 #include "../examples/cut_dynamics_scenes.hpp"
 #include "kerf/dynamics/central_difference.hpp"
 #include "kerf/solve/linear_solver.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -57,7 +58,7 @@ TEST_CASE("the central difference: its critical step, bounded below it, growing 
   // The power iteration stops when two Rayleigh quotients agree to 1e-12: 1e-8 leaves room for
   // the dense solver's round-off on a matrix of condition ~1e6 (measured agreement 2e-12).
   const double estimate = kerf::CentralDifferenceIntegrator(flap.linear, critical, true).critical_step();
-  CHECK(estimate == doctest::Approx(critical).epsilon(1e-8));
+  CHECK(estimate == kerf_test::relative(critical, 1e-8));
 
   // Below: bounded by 2.5 f . u_s (the closed form above; round-off adds ~1e-12 of it).
   const Eigen::VectorXd f = reduced.free_load(0.0);
@@ -77,6 +78,6 @@ TEST_CASE("the central difference: its critical step, bounded below it, growing 
     // more slowly, and by then by a factor of more than 1e10 less): the growth is its |z|^2
     // to 1e-3 (measured 1e-6).
     const std::size_t last = e.size() - 1;
-    CHECK(std::pow(e[last] / e[last - 20], 1.0 / 20.0) == doctest::Approx(closed).epsilon(1e-3));
+    CHECK(std::pow(e[last] / e[last - 20], 1.0 / 20.0) == kerf_test::relative(closed, 1e-3));
   }
 }

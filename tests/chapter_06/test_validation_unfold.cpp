@@ -8,6 +8,7 @@
 // into slices of growing thickness: XFEM's slices fold by their own thickness, duplication's
 // carry whole cut elements and fold less.
 #include "../examples/cut_dynamics_scenes.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -41,13 +42,13 @@ TEST_CASE("an unfolded block rests with its centre of mass under its hinge with 
     if (!duplication) {
       // XFEM: the model's mass is the material's, so the true centre of mass is the model's.
       CHECK(std::abs(com.x() - 0.5) < 1e-5);
-      CHECK(cut_dynamics::model_volume(*body, all, false) == doctest::Approx(0.25).epsilon(1e-12));
+      CHECK(cut_dynamics::model_volume(*body, all, false) == kerf_test::relative(0.25, 1e-12));
     } else {
       // Duplication: the two cut layers' tets (x in [0, 0.78] at z = 0.55, [0.22, 1] at z =
       // 0.27) count twice: the model weighs 3/16 more (model_volume: 0.296875 m^3 against 0.25),
       // placed where the unfolded layers hang, not where the material is, and the material's
       // centre of mass rests beside the hinge: ten times the bound above at least.
-      CHECK(cut_dynamics::model_volume(*body, all, true) == doctest::Approx(0.25 * 19.0 / 16.0).epsilon(1e-12));
+      CHECK(cut_dynamics::model_volume(*body, all, true) == kerf_test::relative(0.25 * 19.0 / 16.0, 1e-12));
       CHECK(std::abs(com.x() - 0.5) > 1e-4);
     }
   }
@@ -73,7 +74,7 @@ TEST_CASE("slices of a slab cut off its wall fold by their own thickness with XF
       if (duplication)
         CHECK(model > 1.1 * exact);
       else
-        CHECK(model == doctest::Approx(exact).epsilon(1e-12));
+        CHECK(model == kerf_test::relative(exact, 1e-12));
     }
   }
   for (std::size_t k = 0; k < 5; ++k) MESSAGE("slice " << k << ": drop xfem " << drop[0][k] << " m, duplication " << drop[1][k] << " m");
@@ -88,7 +89,7 @@ TEST_CASE("slices of a slab cut off its wall fold by their own thickness with XF
   // and 1 are both two whole layers, slices 3 and 4 both four, and each pair folds alike (the
   // box mesh repeats its cell's six tets in every layer). 1 %: the swing left after 1 s
   // (e^{-5}; measured differences 1.4e-3 and 1.7e-3).
-  CHECK(drop[1][1] == doctest::Approx(drop[1][0]).epsilon(1e-2));
-  CHECK(drop[1][4] == doctest::Approx(drop[1][3]).epsilon(1e-2));
+  CHECK(drop[1][1] == kerf_test::relative(drop[1][0], 1e-2));
+  CHECK(drop[1][4] == kerf_test::relative(drop[1][3], 1e-2));
   CHECK(drop[1][2] < 0.9 * drop[1][1]); // three layers fold less than two: the pairs are not all alike
 }

@@ -9,6 +9,7 @@
 
 #include "chapter_07/tilted_plane_cut.hpp"
 #include "support/cut_body.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -66,9 +67,9 @@ TEST_CASE("cut faces: an opened plane cut has one wall per side on the plane shi
   CHECK(walls.normal_error < 1e-10); // measured 8e-16
   // Each wall covers the cut inside the body once: the polygons of one side tile it, without
   // gap or overlap (sum over 256 triangles: round-off).
-  CHECK(walls.area_above == doctest::Approx(area_in_box()).epsilon(1e-12));
-  CHECK(walls.area_below == doctest::Approx(area_in_box()).epsilon(1e-12));
-  CHECK(walls.area_above + walls.area_below == doctest::Approx(2.0 * area_in_box()).epsilon(1e-12));
+  CHECK(walls.area_above == kerf_test::relative(area_in_box(), 1e-12));
+  CHECK(walls.area_below == kerf_test::relative(area_in_box(), 1e-12));
+  CHECK(walls.area_above + walls.area_below == kerf_test::relative(2.0 * area_in_box(), 1e-12));
 }
 
 TEST_CASE("cut faces: with no displacement both walls lie on the cut plane, back to back") {
@@ -78,8 +79,8 @@ TEST_CASE("cut faces: with no displacement both walls lie on the cut plane, back
   MESSAGE("closed: largest distance from the plane " << walls.off_plane << " m");
   CHECK(walls.off_plane < 1e-13); // the clipped polygons' corners, on the plane to round-off (measured 3e-17 m)
   CHECK(walls.normal_error < 1e-10);
-  CHECK(walls.area_above == doctest::Approx(area_in_box()).epsilon(1e-12));
-  CHECK(walls.area_below == doctest::Approx(area_in_box()).epsilon(1e-12));
+  CHECK(walls.area_above == kerf_test::relative(area_in_box(), 1e-12));
+  CHECK(walls.area_below == kerf_test::relative(area_in_box(), 1e-12));
 }
 
 TEST_CASE("cut faces: a body with no cut, or a cut that ends inside every tet it meets, has no walls") {

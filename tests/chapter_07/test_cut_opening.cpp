@@ -15,6 +15,7 @@
 
 #include "chapter_07/tilted_plane_cut.hpp"
 #include "support/cut_body.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -46,14 +47,14 @@ TEST_CASE("cut opening: two sides moved apart by 2 d open by 2 d everywhere, ove
     const kerf::CutOpening opening = kerf::measure_cut_opening(body.model, locator, separated_sides(body, d), {tilted_plane()}, spacing, 1e-7);
     CHECK(opening.samples > 0);
     CHECK(std::abs(opening.area - area_in_box()) <= area_tolerance(spacing));
-    CHECK(opening.mean_opening() == doctest::Approx(2.0 * d).epsilon(1e-12));
-    CHECK(opening.gap_volume == doctest::Approx(2.0 * d * opening.area).epsilon(1e-12));
-    CHECK(opening.max_normal_opening == doctest::Approx(2.0 * d).epsilon(1e-12));
-    CHECK(opening.max_jump == doctest::Approx(2.0 * d).epsilon(1e-12));
+    CHECK(opening.mean_opening() == kerf_test::relative(2.0 * d, 1e-12));
+    CHECK(opening.gap_volume == kerf_test::relative(2.0 * d * opening.area, 1e-12));
+    CHECK(opening.max_normal_opening == kerf_test::relative(2.0 * d, 1e-12));
+    CHECK(opening.max_jump == kerf_test::relative(2.0 * d, 1e-12));
   }
   // The finer sampling finds the area more closely: within 2 % here.
   const kerf::CutOpening fine = kerf::measure_cut_opening(body.model, locator, separated_sides(body, d), {tilted_plane()}, 0.01, 1e-7);
-  CHECK(fine.area == doctest::Approx(area_in_box()).epsilon(0.02));
+  CHECK(fine.area == kerf_test::relative(area_in_box(), 0.02));
 }
 
 TEST_CASE("cut opening: a continuous field jumps by 2 eps G n only, so an unopened cut measures no opening") {
@@ -67,8 +68,8 @@ TEST_CASE("cut opening: a continuous field jumps by 2 eps G n only, so an unopen
   const kerf::CutOpening opening = kerf::measure_cut_opening(body.model, locator, u, {tilted_plane()}, 0.05, eps);
   const Eigen::Vector3d n = plane_normal();
   REQUIRE(opening.samples > 0);
-  CHECK(opening.mean_opening() == doctest::Approx(2.0 * eps * n.dot(G * n)).epsilon(1e-9));
-  CHECK(opening.max_jump == doctest::Approx(2.0 * eps * (G * n).norm()).epsilon(1e-9));
+  CHECK(opening.mean_opening() == kerf_test::relative(2.0 * eps * n.dot(G * n), 1e-9));
+  CHECK(opening.max_jump == kerf_test::relative(2.0 * eps * (G * n).norm(), 1e-9));
 }
 
 TEST_CASE("cut opening: a cut outside the body measures nothing, and bad arguments are refused") {

@@ -2,6 +2,7 @@
 // regular tet, the corner of the cube, a sliver and a needle, and the same tets moved, turned,
 // scaled and inverted.
 #include "kerf/mesh/tet_quality.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -40,8 +41,8 @@ TEST_CASE("the regular tet has dihedral angles arccos(1/3) and radius ratio 1, w
   for (const double s : {1.0, 1e-3, 50.0}) {
     CAPTURE(s);
     const Corners X = moved(regular_tet(), s);
-    CHECK(kerf::tet_min_dihedral_angle(X) == doctest::Approx(regular_angle).epsilon(1e-12));
-    CHECK(kerf::tet_radius_ratio(X) == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(kerf::tet_min_dihedral_angle(X) == kerf_test::relative(regular_angle, 1e-12));
+    CHECK(kerf::tet_radius_ratio(X) == kerf_test::relative(1.0, 1e-12));
   }
 }
 
@@ -50,8 +51,8 @@ TEST_CASE("the corner of the cube: smallest dihedral angle arccos(1/sqrt 3), rad
   // angle between the normals (1,1,1)/sqrt 3 and e_i subtracted from 180, arccos(1/sqrt 3) = 54.74.
   // r = 3 V / A = 1/2 / (3/2 + sqrt(3)/2), R = sqrt(3)/2, so 3 r / R = sqrt 3 - 1 = 0.732.
   const Corners X = moved(corner_tet(), 2.0);
-  CHECK(kerf::tet_min_dihedral_angle(X) == doctest::Approx(std::acos(1.0 / std::sqrt(3.0)) * 180.0 / std::numbers::pi).epsilon(1e-12));
-  CHECK(kerf::tet_radius_ratio(X) == doctest::Approx(std::sqrt(3.0) - 1.0).epsilon(1e-12));
+  CHECK(kerf::tet_min_dihedral_angle(X) == kerf_test::relative(std::acos(1.0 / std::sqrt(3.0)) * 180.0 / std::numbers::pi, 1e-12));
+  CHECK(kerf::tet_radius_ratio(X) == kerf_test::relative(std::sqrt(3.0) - 1.0, 1e-12));
 }
 
 TEST_CASE("a sliver and a needle score near zero, an inverted tet keeps its angles but has radius ratio 0") {
@@ -72,7 +73,7 @@ TEST_CASE("a sliver and a needle score near zero, an inverted tet keeps its angl
   // says 0 so that an inverted tet can never pass for a good one.
   Corners inverted = moved(regular_tet(), 1.0);
   inverted.row(1).swap(inverted.row(2));
-  CHECK(kerf::tet_min_dihedral_angle(inverted) == doctest::Approx(std::acos(1.0 / 3.0) * 180.0 / std::numbers::pi));
+  CHECK(kerf::tet_min_dihedral_angle(inverted) == kerf_test::relative(std::acos(1.0 / 3.0) * 180.0 / std::numbers::pi));
   CHECK(kerf::tet_radius_ratio(inverted) == 0.0);
 }
 
@@ -88,7 +89,7 @@ TEST_CASE("tet_quality_summary counts what it is asked to and refuses an empty m
   const kerf::TetQualitySummary s = kerf::tet_quality_summary(mesh, 10.0, 0.1);
   CHECK(s.min_dihedral_angle < 0.2);
   CHECK(s.min_radius_ratio < 0.01);
-  CHECK(s.mean_radius_ratio == doctest::Approx(0.5 * (1.0 + kerf::tet_radius_ratio(kerf::tet_corners(mesh, 1)))));
+  CHECK(s.mean_radius_ratio == kerf_test::relative(0.5 * (1.0 + kerf::tet_radius_ratio(kerf::tet_corners(mesh, 1)))));
   CHECK(s.below_dihedral_threshold == 1);
   CHECK(s.below_radius_ratio_threshold == 1);
   CHECK_THROWS_AS(kerf::tet_quality_summary(kerf::TetMesh{}), std::invalid_argument);

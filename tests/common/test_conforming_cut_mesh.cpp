@@ -12,6 +12,7 @@
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/mesh/check_tet_mesh.hpp"
 #include "kerf/mesh/check_triangle_surface.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -92,8 +93,8 @@ TEST_CASE("height_field_surface: the graph of h on a grid, exactly on it, orient
     for (int j = 0; j <= cells[1]; ++j)
       for (int i = 0; i <= cells[0]; ++i) {
         const Eigen::RowVector3d x = s.vertices.row(i + 5 * j);
-        CHECK(x[0] == doctest::Approx(0.03 * i / cells[0]).epsilon(1e-15));
-        CHECK(x[1] == doctest::Approx(0.06 * j / cells[1]).epsilon(1e-15));
+        CHECK(x[0] == kerf_test::relative(0.03 * i / cells[0], 1e-15));
+        CHECK(x[1] == kerf_test::relative(0.06 * j / cells[1], 1e-15));
         CHECK(x[2] == z_c + height.h(x[0], x[1])); // on the graph, to the last bit
       }
     // Every normal has +z: the projection is traversed counter-clockwise, and the projected
@@ -167,7 +168,7 @@ TEST_CASE("split_box_along_height_field: the layer is the surface, every tet sca
         REQUIRE(pairs == 1);
         const bool is_below = below[static_cast<std::size_t>(t)];
         const double factor = is_below ? 1 + h_a / (z_c - beam_min[2]) : 1 - h_a / (beam_max[2] - z_c);
-        CHECK(v / v0 == doctest::Approx(factor).epsilon(1e-12));
+        CHECK(v / v0 == kerf_test::relative(factor, 1e-12));
         min_ratio = std::min(min_ratio, v / v0);
         max_ratio = std::max(max_ratio, v / v0);
         total += v;

@@ -7,6 +7,7 @@
 #include "kerf/cut/rectangle_cut.hpp"
 #include "kerf/cut/tet_cut_classification.hpp"
 #include "kerf/mesh/box_mesh.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -129,20 +130,20 @@ double fraction_above_closed_form(const Eigen::Vector4d& lambda) {
 TEST_CASE("cut: a rectangle's normal, signed distance to its plane, projection test and distance") {
   const kerf::RectangleCut cut({0, 0, 0}, {2, 0, 0}, {0, 1, 0});
   CHECK((cut.normal() - Eigen::Vector3d(0, 0, 1)).norm() == doctest::Approx(0.0));
-  CHECK(cut.signed_distance_to_plane({0.5, 0.5, 0.3}) == doctest::Approx(0.3));
-  CHECK(cut.signed_distance_to_plane({5.0, -3.0, -0.2}) == doctest::Approx(-0.2)); // the plane is unbounded
+  CHECK(cut.signed_distance_to_plane({0.5, 0.5, 0.3}) == kerf_test::relative(0.3));
+  CHECK(cut.signed_distance_to_plane({5.0, -3.0, -0.2}) == kerf_test::relative(-0.2)); // the plane is unbounded
   CHECK(cut.contains_projection({0.5, 0.5, -7.0}, 0.0));
   CHECK(cut.contains_projection({2.0, 1.0, 0.0}, 0.0)); // a corner: the closure counts
   CHECK_FALSE(cut.contains_projection({2.0 + 1e-10, 0.5, 0.0}, 0.0));
   CHECK(cut.contains_projection({2.0 + 1e-10, 0.5, 0.0}, 1e-9));
   CHECK_FALSE(cut.contains_projection({1.0, -1e-8, 0.0}, 1e-9));
-  CHECK(cut.distance_to_rectangle({1.0, 0.5, -0.25}) == doctest::Approx(0.25)); // above the inside
-  CHECK(cut.distance_to_rectangle({1.0, 2.0, 0.0}) == doctest::Approx(1.0));    // beside an edge
-  CHECK(cut.distance_to_rectangle({3.0, 2.0, 1.0}) == doctest::Approx(std::sqrt(3.0))); // past a corner
+  CHECK(cut.distance_to_rectangle({1.0, 0.5, -0.25}) == kerf_test::relative(0.25)); // above the inside
+  CHECK(cut.distance_to_rectangle({1.0, 2.0, 0.0}) == kerf_test::relative(1.0));    // beside an edge
+  CHECK(cut.distance_to_rectangle({3.0, 2.0, 1.0}) == kerf_test::relative(std::sqrt(3.0))); // past a corner
   CHECK(cut.distance_to_rectangle({1.5, 0.25, 0.0}) == 0.0);
   // Swapping the edges flips the orientation, and with it every signed distance.
   const kerf::RectangleCut flipped({0, 0, 0}, {0, 1, 0}, {2, 0, 0});
-  CHECK(flipped.signed_distance_to_plane({0.5, 0.5, 0.3}) == doctest::Approx(-0.3));
+  CHECK(flipped.signed_distance_to_plane({0.5, 0.5, 0.3}) == kerf_test::relative(-0.3));
   CHECK_THROWS_AS(kerf::RectangleCut({0, 0, 0}, {1, 0, 0}, {1, 1, 0}), std::invalid_argument);
   CHECK_THROWS_AS(kerf::RectangleCut({0, 0, 0}, {0, 0, 0}, {0, 1, 0}), std::invalid_argument);
 }
@@ -213,7 +214,7 @@ TEST_CASE("cut: random planes through random tets keep V_a + V_b = V and match t
       for (int j = i + 1; j < 4; ++j) min_gap = std::min(min_gap, std::abs(lambda[i] - lambda[j]));
     if (min_gap > 1e-2) {
       const double V = std::abs(kerf::signed_tet_volume(X));
-      CHECK(clip.V_a / V == doctest::Approx(fraction_above_closed_form(lambda)).epsilon(1e-9));
+      CHECK(clip.V_a / V == kerf_test::relative(fraction_above_closed_form(lambda), 1e-9));
       ++checked_against_closed_form;
     }
   }
@@ -226,21 +227,21 @@ TEST_CASE("cut: sections and volumes in closed form on the unit tet") {
     const Eigen::Vector4d lambda(-0.5, 0.5, -0.5, -0.5);
     const kerf::ClippedTet clip = kerf::clip_tet(X, lambda);
     CHECK(clip.tet_case == kerf::TetCutCase::cut_one_vertex_apart);
-    CHECK(kerf::polygon_area(clip.section) == doctest::Approx(1.0 / 8.0).epsilon(1e-15));
-    CHECK(clip.V_a == doctest::Approx(1.0 / 48.0).epsilon(1e-15));
-    CHECK(clip.V_b == doctest::Approx(7.0 / 48.0).epsilon(1e-15));
+    CHECK(kerf::polygon_area(clip.section) == kerf_test::relative(1.0 / 8.0, 1e-15));
+    CHECK(clip.V_a == kerf_test::relative(1.0 / 48.0, 1e-15));
+    CHECK(clip.V_b == kerf_test::relative(7.0 / 48.0, 1e-15));
     // counter-clockwise seen from above: the area vector points along +x
     const Eigen::Vector3d area_vector =
         0.5 * (clip.section[1] - clip.section[0]).cross(clip.section[2] - clip.section[0]);
-    CHECK(area_vector.x() == doctest::Approx(1.0 / 8.0));
+    CHECK(area_vector.x() == kerf_test::relative(1.0 / 8.0));
   }
   SUBCASE("x + y = 0.5 splits two against two: rectangle 0.5 by sqrt(0.5), V_a = V_b = 1/12") {
     const Eigen::Vector4d lambda(-0.5, 0.5, 0.5, -0.5);
     const kerf::ClippedTet clip = kerf::clip_tet(X, lambda);
     CHECK(clip.tet_case == kerf::TetCutCase::cut_two_two);
-    CHECK(kerf::polygon_area(clip.section) == doctest::Approx(std::sqrt(2.0) / 4.0).epsilon(1e-15));
-    CHECK(clip.V_a == doctest::Approx(1.0 / 12.0).epsilon(1e-15));
-    CHECK(clip.V_b == doctest::Approx(1.0 / 12.0).epsilon(1e-15));
+    CHECK(kerf::polygon_area(clip.section) == kerf_test::relative(std::sqrt(2.0) / 4.0, 1e-15));
+    CHECK(clip.V_a == kerf_test::relative(1.0 / 12.0, 1e-15));
+    CHECK(clip.V_b == kerf_test::relative(1.0 / 12.0, 1e-15));
   }
   SUBCASE("a plane through corner 1 with normal (1,2,-2)/3: triangle of area 3/16, V_a = 1/48") {
     // lambda = n . (x - x1): corners 0, 2, 3 get -1/3, 1/3, -1. Crossings at (0, 1/2, 0) and
@@ -248,17 +249,17 @@ TEST_CASE("cut: sections and volumes in closed form on the unit tet") {
     const Eigen::Vector4d lambda(-1.0 / 3.0, 0.0, 1.0 / 3.0, -1.0);
     const kerf::ClippedTet clip = kerf::clip_tet(X, lambda);
     CHECK(clip.tet_case == kerf::TetCutCase::cut_through_vertex);
-    CHECK(kerf::polygon_area(clip.section) == doctest::Approx(3.0 / 16.0).epsilon(1e-15));
-    CHECK(clip.V_a == doctest::Approx(1.0 / 48.0).epsilon(1e-15));
+    CHECK(kerf::polygon_area(clip.section) == kerf_test::relative(3.0 / 16.0, 1e-15));
+    CHECK(clip.V_a == kerf_test::relative(1.0 / 48.0, 1e-15));
   }
   SUBCASE("the plane y = z contains the edge (0,1): two halves of V / 2") {
     const Eigen::Vector4d lambda(0.0, 0.0, 1.0, -1.0);
     const kerf::ClippedTet clip = kerf::clip_tet(X, lambda);
     CHECK(clip.tet_case == kerf::TetCutCase::cut_through_edge);
-    CHECK(clip.V_a == doctest::Approx(1.0 / 12.0).epsilon(1e-15));
-    CHECK(clip.V_b == doctest::Approx(1.0 / 12.0).epsilon(1e-15));
+    CHECK(clip.V_a == kerf_test::relative(1.0 / 12.0, 1e-15));
+    CHECK(clip.V_b == kerf_test::relative(1.0 / 12.0, 1e-15));
     // section: (0,0,0), (1,0,0), (0, 1/2, 1/2): area |(1,0,0) x (0,1/2,1/2)| / 2 = sqrt(2)/4
-    CHECK(kerf::polygon_area(clip.section) == doctest::Approx(std::sqrt(2.0) / 4.0).epsilon(1e-15));
+    CHECK(kerf::polygon_area(clip.section) == kerf_test::relative(std::sqrt(2.0) / 4.0, 1e-15));
   }
 }
 
@@ -294,7 +295,7 @@ TEST_CASE("cut: a plane through a node is snapped, and classified and clipped as
   // The plane through corner 1 with normal (1,2,-2), moved off it by 1e-12: round-off size.
   const Eigen::Vector3d n = Eigen::Vector3d(1, 2, -2) / 3.0;
   const kerf::RectangleCut cut = plane_cut(Eigen::Vector3d(1, 0, 0) + 1e-12 * n, n, 10.0);
-  CHECK(kerf::default_snap_tolerance(mesh) == doctest::Approx(1e-9 * std::sqrt(3.0)));
+  CHECK(kerf::default_snap_tolerance(mesh) == kerf_test::relative(1e-9 * std::sqrt(3.0)));
 
   const kerf::LevelSet snapped = kerf::make_level_set(mesh, cut);
   CHECK(snapped.lambda[1] == 0.0);
@@ -305,7 +306,7 @@ TEST_CASE("cut: a plane through a node is snapped, and classified and clipped as
 
   // Without snapping the same plane separates corner 2 from a sliver-producing -1e-12 at corner 1.
   const kerf::LevelSet raw = kerf::make_level_set(mesh, cut, 0.0);
-  CHECK(raw.lambda[1] == doctest::Approx(-1e-12).epsilon(1e-3));
+  CHECK(raw.lambda[1] == kerf_test::relative(-1e-12, 1e-3));
   CHECK(kerf::classify_tet_cut(raw.lambda) == kerf::TetCutCase::cut_one_vertex_apart);
   check_clip(X, raw.lambda, kerf::clip_tet(X, raw.lambda));
 }
@@ -323,7 +324,7 @@ TEST_CASE("cut: a plane along a face, all corners on the plane, and a 1e-12 volu
     CHECK(clip.tet_case == kerf::TetCutCase::touched_face);
     CHECK(clip.above.empty());
     CHECK(clip.V_a == 0.0);
-    CHECK(clip.V_b == doctest::Approx(V).epsilon(1e-15));
+    CHECK(clip.V_b == kerf_test::relative(V, 1e-15));
     check_clip(X, level_set.lambda, clip);
     const kerf::MeshCutClassification classes = kerf::classify_mesh_cut(mesh, level_set, cut);
     CHECK(classes.count(kerf::ElementCutState::touched) == 1);
@@ -331,7 +332,7 @@ TEST_CASE("cut: a plane along a face, all corners on the plane, and a 1e-12 volu
   SUBCASE("all four values zero: the whole tet counts as above") {
     const kerf::ClippedTet clip = kerf::clip_tet(X, Eigen::Vector4d::Zero());
     CHECK(clip.tet_case == kerf::TetCutCase::all_zero);
-    CHECK(clip.V_a == doctest::Approx(V).epsilon(1e-15));
+    CHECK(clip.V_a == kerf_test::relative(V, 1e-15));
     CHECK(clip.below.empty());
     CHECK_FALSE(kerf::is_cut(clip.tet_case));
   }
@@ -340,7 +341,7 @@ TEST_CASE("cut: a plane along a face, all corners on the plane, and a 1e-12 volu
     const Eigen::Vector4d lambda(-(1.0 - s), s, -(1.0 - s), -(1.0 - s));
     const kerf::ClippedTet clip = kerf::clip_tet(X, lambda);
     check_clip(X, lambda, clip);
-    CHECK(clip.V_a / V == doctest::Approx(1e-12).epsilon(1e-9));
+    CHECK(clip.V_a / V == kerf_test::relative(1e-12, 1e-9));
     CHECK_FALSE(kerf::minimum_volume_fraction_met(clip.V_a / V, clip.V_b / V));
     CHECK(kerf::minimum_volume_fraction_met(clip.V_a / V, clip.V_b / V, 1e-13));
     CHECK(kerf::minimum_volume_fraction_met(0.3, 0.7));
@@ -474,8 +475,8 @@ TEST_CASE("cut: the paper's beam with the half-depth cut at z = 0.1") {
         V_b += clip.V_b;
       }
       const double layer_volume = 0.03 * 0.06 * 0.2 / 21.0;
-      CHECK(V_a == doctest::Approx(layer_volume / 2).epsilon(1e-12));
-      CHECK(V_b == doctest::Approx(layer_volume / 2).epsilon(1e-12));
+      CHECK(V_a == kerf_test::relative(layer_volume / 2, 1e-12));
+      CHECK(V_b == kerf_test::relative(layer_volume / 2, 1e-12));
     }
   }
 }

@@ -3,6 +3,7 @@
 // pseudo-normal test is right everywhere off the surface.
 #include "kerf/cut/height_field_surface.hpp"
 #include "kerf/cut/point_side.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -50,12 +51,12 @@ TEST_CASE("closest surface point: inside a face, on an edge, at a vertex") {
   const kerf::TriangleSurface surface = roof(0.0); // the plane z = 0 on 2 x 2 cells
   kerf::ClosestSurfacePoint c = kerf::closest_surface_point(surface, {0.3, 0.6, 0.25});
   CHECK(c.feature == kerf::TriangleFeature::face);
-  CHECK(c.distance == doctest::Approx(0.25).epsilon(1e-15));
+  CHECK(c.distance == kerf_test::relative(0.25, 1e-15));
   CHECK((c.point - Eigen::Vector3d(0.3, 0.6, 0.0)).norm() < 1e-15);
   // Beyond the side x = 1: the closest point is on the boundary edge, at (1, 0.5, 0).
   c = kerf::closest_surface_point(surface, {1.5, 0.5, 0.0});
   CHECK(c.feature == kerf::TriangleFeature::edge);
-  CHECK(c.distance == doctest::Approx(0.5).epsilon(1e-15));
+  CHECK(c.distance == kerf_test::relative(0.5, 1e-15));
   // Beyond the corner (1, 1): the vertex.
   c = kerf::closest_surface_point(surface, {2.0, 3.0, 0.0});
   CHECK(c.feature == kerf::TriangleFeature::vertex);
@@ -93,11 +94,11 @@ TEST_CASE("random points: the pseudo-normal test is never wrong, the closest-tri
   // deviation is 0.0023, and we allow 4 of them.
   const WrongCounts ridge = count_wrong(3.0, count);
   CHECK(ridge.pseudo == 0);
-  CHECK(static_cast<double>(ridge.closest) / count == doctest::Approx(7.0 / 60.0).epsilon(0.01 / (7.0 / 60.0)));
+  CHECK(static_cast<double>(ridge.closest) / count == kerf_test::relative(7.0 / 60.0, 0.01 / (7.0 / 60.0)));
   // The sharp valley z = 3 |x|: below it, the tie goes to the plank x < 0, whose plane has the
   // point above where 3 x + z > 0, i.e. for -3 x < z < -x / 3: an area int_0^{1/2} (8/3) x dx = 1/3,
   // a fraction 2/15 = 0.1333 of the box (standard deviation 0.0024).
   const WrongCounts valley = count_wrong(-3.0, count);
   CHECK(valley.pseudo == 0);
-  CHECK(static_cast<double>(valley.closest) / count == doctest::Approx(2.0 / 15.0).epsilon(0.01 / (2.0 / 15.0)));
+  CHECK(static_cast<double>(valley.closest) / count == kerf_test::relative(2.0 / 15.0, 0.01 / (2.0 / 15.0)));
 }

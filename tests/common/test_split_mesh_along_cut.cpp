@@ -12,6 +12,7 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -167,9 +168,9 @@ TEST_CASE("split_mesh_along_cut: a cut through the whole section leaves two piec
     CHECK(side_component[0] != side_component[1]);
     // Sums of a few hundred tet volumes: round-off is ~1e-15 relative, 1e-12 leaves a margin
     // and still catches a single missing tet (1/144 of the box).
-    CHECK(volume[0] + volume[1] == doctest::Approx(box_volume).epsilon(1e-12));
-    CHECK(volume[0] == doctest::Approx(box_volume / 2).epsilon(1e-12));
-    CHECK(volume[1] == doctest::Approx(box_volume / 2).epsilon(1e-12));
+    CHECK(volume[0] + volume[1] == kerf_test::relative(box_volume, 1e-12));
+    CHECK(volume[0] == kerf_test::relative(box_volume / 2, 1e-12));
+    CHECK(volume[1] == kerf_test::relative(box_volume / 2, 1e-12));
   }
 }
 

@@ -13,6 +13,7 @@
 #include "kerf/fem/tet_mass.hpp"
 #include "kerf/mesh/five_tet_cube.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -54,8 +55,8 @@ TEST_CASE("the five-tet cube fills the box with positively oriented tets: a cent
   REQUIRE(mesh.num_nodes() == 8);
   // Edge 2, volume 8: the central tet 8/3, each corner tet 8/6, exactly in floating point up to
   // the rounding of a 3x3 determinant of small integers (exact), hence 1e-14.
-  CHECK(signed_volume(mesh, 0) == doctest::Approx(8.0 / 3.0).epsilon(1e-14));
-  for (Eigen::Index t = 1; t < 5; ++t) CHECK(signed_volume(mesh, t) == doctest::Approx(8.0 / 6.0).epsilon(1e-14));
+  CHECK(signed_volume(mesh, 0) == kerf_test::relative(8.0 / 3.0, 1e-14));
+  for (Eigen::Index t = 1; t < 5; ++t) CHECK(signed_volume(mesh, t) == kerf_test::relative(8.0 / 6.0, 1e-14));
   CHECK_THROWS_AS(kerf::make_five_tet_cube({0, 0, 0}, {1, 0, 1}), std::invalid_argument);
 }
 
@@ -77,11 +78,11 @@ TEST_CASE("Koschier's T on the unit tet cut by x = 1/2: 1 on u, 1/sqrt(v) on a w
   for (int k = 0; k < 4; ++k) {
     const int node = enrichment.enrichment_node[static_cast<std::size_t>(k)];
     const double v = node == 1 ? 1.0 - std::pow(1.0 - c, 3) : std::pow(1.0 - c, 3);
-    for (int p = 0; p < 3; ++p) CHECK(t[3 * (4 + k) + p] == doctest::Approx(1.0 / std::sqrt(v)).epsilon(1e-13));
+    for (int p = 0; p < 3; ++p) CHECK(t[3 * (4 + k) + p] == kerf_test::relative(1.0 / std::sqrt(v), 1e-13));
   }
   // And the values printed out: sqrt(8 / 7) and sqrt(8).
-  CHECK(t[3 * 4 + 3 * 1] == doctest::Approx(std::sqrt(8.0 / 7.0)).epsilon(1e-13));
-  CHECK(t[3 * 4 + 3 * 0] == doctest::Approx(std::sqrt(8.0)).epsilon(1e-13));
+  CHECK(t[3 * 4 + 3 * 1] == kerf_test::relative(std::sqrt(8.0 / 7.0), 1e-13));
+  CHECK(t[3 * 4 + 3 * 0] == kerf_test::relative(std::sqrt(8.0), 1e-13));
 }
 
 TEST_CASE("eqs. 24-25 solve A x = c: the same x as a dense Cholesky of A, with Koschier's and with Jacobi's T") {
@@ -100,7 +101,7 @@ TEST_CASE("eqs. 24-25 solve A x = c: the same x as a dense Cholesky of A, with K
   }
   // Jacobi's T makes the diagonal of T A T all ones.
   const Eigen::SparseMatrix<double> scaled = kerf::scale_bilaterally(A, kerf::jacobi_preconditioner(A));
-  for (Eigen::Index k = 0; k < scaled.rows(); ++k) CHECK(scaled.coeff(k, k) == doctest::Approx(1.0).epsilon(1e-14));
+  for (Eigen::Index k = 0; k < scaled.rows(); ++k) CHECK(scaled.coeff(k, k) == kerf_test::relative(1.0, 1e-14));
   CHECK_THROWS_AS(kerf::jacobi_preconditioner(Eigen::SparseMatrix<double>(3, 3)), std::invalid_argument);
 }
 
@@ -119,10 +120,10 @@ TEST_CASE("Fig. 14's cube: bare kappa grows like 1 / v_min (d^-3), scaled like d
   // in kappa ~ C d^-p, which the leading-order argument above allows and a wrong power does not.
   const kerf::NewtonMatrixConditioning far = cube_cut_at(-1.0 + 1e-3, 0.0), near = cube_cut_at(-1.0 + 1e-4, 0.0);
   REQUIRE(std::isfinite(near.plain));
-  CHECK(exponent(far.plain, far.smallest_fraction, near.plain, near.smallest_fraction) == doctest::Approx(1.0).epsilon(0.03));
-  CHECK(exponent(far.plain, 1e-3, near.plain, 1e-4) == doctest::Approx(3.0).epsilon(0.01));
-  CHECK(exponent(far.jacobi, 1e-3, near.jacobi, 1e-4) == doctest::Approx(1.0).epsilon(0.03));
-  CHECK(exponent(far.koschier, 1e-3, near.koschier, 1e-4) == doctest::Approx(1.0).epsilon(0.03));
+  CHECK(exponent(far.plain, far.smallest_fraction, near.plain, near.smallest_fraction) == kerf_test::relative(1.0, 0.03));
+  CHECK(exponent(far.plain, 1e-3, near.plain, 1e-4) == kerf_test::relative(3.0, 0.01));
+  CHECK(exponent(far.jacobi, 1e-3, near.jacobi, 1e-4) == kerf_test::relative(1.0, 0.03));
+  CHECK(exponent(far.koschier, 1e-3, near.koschier, 1e-4) == kerf_test::relative(1.0, 0.03));
   // The preconditioned matrix is better than the bare one by many orders (measured 2e9 at 1e-4).
   CHECK(near.koschier < 1e-6 * near.plain);
 
@@ -134,11 +135,11 @@ TEST_CASE("Fig. 14's cube: bare kappa grows like 1 / v_min (d^-3), scaled like d
   CHECK(start.constrained > 0);
   CHECK(tiny.constrained > start.constrained);
   CHECK(!(tiny.plain < 1e15));
-  CHECK(exponent(start.koschier_constrained, 1e-4, tiny.koschier_constrained, 1e-8) == doctest::Approx(1.0).epsilon(0.01));
+  CHECK(exponent(start.koschier_constrained, 1e-4, tiny.koschier_constrained, 1e-8) == kerf_test::relative(1.0, 0.01));
   CHECK(tiny.koschier_constrained < 1e10);
   // And it is the slab's d^-1, the same as without constraining at d = 1e-4: eq. 22 removed
   // only DOFs that the diagonal scaling had already tamed.
-  CHECK(start.koschier_constrained == doctest::Approx(near.koschier).epsilon(0.01));
+  CHECK(start.koschier_constrained == kerf_test::relative(near.koschier, 0.01));
 
   // The d^-1 is the basis's, as derived: in the part basis (u_i on the home part, u_i + a_k on
   // part k: the same field) the near-dependent pair is split, and Jacobi scaling keeps kappa at

@@ -8,6 +8,7 @@
 #include "kerf/dynamics/lumped_mass.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -97,12 +98,12 @@ TEST_CASE("piece-wise lumped masses give every piece of a cut tet its mass and f
       // The body's mass: a rigid translation of both pieces, 2 T / |t|^2 = rho V. Sums of a
       // dozen products of volumes of order 0.1: round-off is ~1e-16, asked to 1e-13.
       const Eigen::VectorXd all = translation(body, side, 0, t);
-      CHECK(all.dot(M * all) / t.squaredNorm() == doctest::Approx(rho * V).epsilon(1e-13));
+      CHECK(all.dot(M * all) / t.squaredNorm() == kerf_test::relative(rho * V, 1e-13));
       for (const int s : {-1, 1}) {
         CAPTURE(s);
         const Eigen::VectorXd alone = translation(body, side, s, t);
         // One piece translating alone has the kinetic energy of its own mass.
-        CHECK(alone.dot(M * alone) / t.squaredNorm() == doctest::Approx(rho * volume[s + 1]).epsilon(1e-13));
+        CHECK(alone.dot(M * alone) / t.squaredNorm() == kerf_test::relative(rho * volume[s + 1], 1e-13));
         // Its first moment int_p x rho (x-field on the piece, paired with its translation e_x):
         // exact for row sums and Bernstein (on a Tet4 the same diagonal); the virtual tet puts
         // the piece's mass on the element's centroid.
@@ -112,8 +113,8 @@ TEST_CASE("piece-wise lumped masses give every piece of a cut tet its mass and f
         });
         const double first_moment = unit_x.dot(M * x_field);
         if (scheme == kerf::LumpingScheme::row_sum || scheme == kerf::LumpingScheme::bernstein)
-          CHECK(first_moment == doctest::Approx(rho * moment[s + 1].x()).epsilon(1e-13));
-        if (scheme == kerf::LumpingScheme::virtual_tet) CHECK(first_moment == doctest::Approx(rho * volume[s + 1] * 0.25).epsilon(1e-13));
+          CHECK(first_moment == kerf_test::relative(rho * moment[s + 1].x(), 1e-13));
+        if (scheme == kerf::LumpingScheme::virtual_tet) CHECK(first_moment == kerf_test::relative(rho * volume[s + 1] * 0.25, 1e-13));
       }
       // The two pieces share no mass.
       CHECK(std::abs(translation(body, side, -1, t).dot(M * translation(body, side, 1, t))) <= 1e-15 * rho);
@@ -139,7 +140,7 @@ TEST_CASE("eqs. 81-82 give a separated piece the wrong inertia and open a fallin
         kerf::lump_cut_xfem_mass(body.model, rho, kerf::LumpingScheme::schoch_eq_81_82, cut_body::subtets);
     // Eq. 81 alone carries a rigid translation of the whole body: m.
     const Eigen::VectorXd all = translation(body, side, 0, t);
-    CHECK(all.dot(M * all) / t.squaredNorm() == doctest::Approx(m).epsilon(1e-13));
+    CHECK(all.dot(M * all) / t.squaredNorm() == kerf_test::relative(m, 1e-13));
     for (const int s : {-1, 1}) {
       CAPTURE(s);
       const int k = s < 0 ? static_cast<int>(cut.corners_minus.size()) : 4 - static_cast<int>(cut.corners_minus.size());
@@ -149,9 +150,9 @@ TEST_CASE("eqs. 81-82 give a separated piece the wrong inertia and open a fallin
       // [derived] the k home nodes carry m/4 in u and (V_other/V) m/4 in a, the 4 - k others
       // (V_s / V) m/4 in a: (m/4)(k + k V_other/V + (4 - k) V_s/V); m itself for every 2:2 cut.
       const double predicted = m / 4.0 * (k + k * (V - vs) / V + (4 - k) * vs / V);
-      CHECK(mass_seen == doctest::Approx(predicted).epsilon(1e-13));
+      CHECK(mass_seen == kerf_test::relative(predicted, 1e-13));
       CHECK(std::abs(mass_seen - rho * vs) > 0.05 * rho * vs);
-      if (k == 2) CHECK(mass_seen == doctest::Approx(m).epsilon(1e-13));
+      if (k == 2) CHECK(mass_seen == kerf_test::relative(m, 1e-13));
     }
     // Free fall with Schoch et al.'s consistent body load: u'' = g, but a_k'' = 4 <N_a>_p g on the
     // piece p where node a's enrichment is active, so the phantom node there falls at
@@ -189,7 +190,7 @@ TEST_CASE("on a cut block the piece-wise lumped masses weigh each part exactly a
     CAPTURE(std::string(name_of(scheme)));
     const Eigen::SparseMatrix<double> M = kerf::lump_cut_xfem_mass(body.model, rho, scheme, cut_body::subtets);
     const Eigen::VectorXd all = translation(body, side, 0, t);
-    CHECK(all.dot(M * all) / t.squaredNorm() == doctest::Approx(rho).epsilon(1e-13));
+    CHECK(all.dot(M * all) / t.squaredNorm() == kerf_test::relative(rho, 1e-13));
     const Eigen::VectorXd below = translation(body, side, -1, t), above = translation(body, side, 1, t);
     const double mass_below = below.dot(M * below) / t.squaredNorm(), mass_above = above.dot(M * above) / t.squaredNorm();
     if (scheme == kerf::LumpingScheme::schoch_eq_81_82) {
@@ -198,16 +199,16 @@ TEST_CASE("on a cut block the piece-wise lumped masses weigh each part exactly a
       CHECK(mass_above > 1.02 * rho * (1.0 - volume_below));
       continue;
     }
-    CHECK(mass_below == doctest::Approx(rho * volume_below).epsilon(1e-13));
-    CHECK(mass_above == doctest::Approx(rho * (1.0 - volume_below)).epsilon(1e-13));
+    CHECK(mass_below == kerf_test::relative(rho * volume_below, 1e-13));
+    CHECK(mass_above == kerf_test::relative(rho * (1.0 - volume_below), 1e-13));
     if (scheme == kerf::LumpingScheme::row_sum || scheme == kerf::LumpingScheme::bernstein) {
       const auto unit = [&](int c) { return translation(body, side, -1, Eigen::Vector3d::Unit(c)); };
       const Eigen::VectorXd position = body.piecewise_field(side, [](const Eigen::Vector3d& x, int s) {
         return s < 0 ? x : Eigen::Vector3d::Zero().eval();
       });
-      CHECK(unit(0).dot(M * position) == doctest::Approx(rho * x_below).epsilon(1e-13));
-      CHECK(unit(1).dot(M * position) == doctest::Approx(rho * 0.5 * volume_below).epsilon(1e-13));
-      CHECK(unit(2).dot(M * position) == doctest::Approx(rho * z_below).epsilon(1e-13));
+      CHECK(unit(0).dot(M * position) == kerf_test::relative(rho * x_below, 1e-13));
+      CHECK(unit(1).dot(M * position) == kerf_test::relative(rho * 0.5 * volume_below, 1e-13));
+      CHECK(unit(2).dot(M * position) == kerf_test::relative(rho * z_below, 1e-13));
     }
     // Free fall of the whole block: every phantom node at g.
     const Eigen::Vector3d g(0.0, -9.81, 0.0);
@@ -238,7 +239,7 @@ TEST_CASE("on a cut Tet10, Bernstein and HRZ stay positive and weigh each piece 
       for (const int s : {-1, 1}) {
         CAPTURE(s);
         const Eigen::VectorXd alone = translation(body, side, s, t);
-        CHECK(alone.dot(M * alone) / t.squaredNorm() == doctest::Approx(rho * volume[s + 1]).epsilon(1e-13));
+        CHECK(alone.dot(M * alone) / t.squaredNorm() == kerf_test::relative(rho * volume[s + 1], 1e-13));
         // The first moment, the x-field on the piece paired with its unit translations.
         const Eigen::VectorXd position = body.piecewise_field(side, [&](const Eigen::Vector3d& x, int q) {
           return q == s ? x : Eigen::Vector3d::Zero().eval();
@@ -261,10 +262,10 @@ TEST_CASE("on a cut Tet10, Bernstein and HRZ stay positive and weigh each piece 
     }
     // Row sums: corner 0's u entry is the sum of its two pieces' row sums, rho int_T N_0 = -rho V / 20.
     const Eigen::SparseMatrix<double> row_sum = kerf::lump_cut_xfem_mass(body.model, rho, kerf::LumpingScheme::row_sum, cut_body::subtets);
-    CHECK(row_sum.coeff(0, 0) == doctest::Approx(-rho * V / 20.0).epsilon(1e-12));
+    CHECK(row_sum.coeff(0, 0) == kerf_test::relative(-rho * V / 20.0, 1e-12));
     // Bernstein's: rho int_T L_0^2 = rho V / 10, the two pieces' shares summed.
     const Eigen::SparseMatrix<double> bernstein = kerf::lump_cut_xfem_mass(body.model, rho, kerf::LumpingScheme::bernstein, cut_body::subtets);
-    CHECK(bernstein.coeff(0, 0) == doctest::Approx(rho * V / 10.0).epsilon(1e-12));
+    CHECK(bernstein.coeff(0, 0) == kerf_test::relative(rho * V / 10.0, 1e-12));
   }
 }
 
@@ -280,7 +281,7 @@ TEST_CASE("a whole Tet10 gets rho V / 10 at every node from Bernstein, as from t
     CAPTURE(std::string(name_of(scheme)));
     const Eigen::SparseMatrix<double> M = kerf::lump_cut_xfem_mass(body.model, rho, scheme, cut_body::subtets);
     REQUIRE(M.rows() == 30);
-    for (int i = 0; i < 30; ++i) CHECK(M.coeff(i, i) == doctest::Approx(rho * V / 10.0).epsilon(1e-13));
+    for (int i = 0; i < 30; ++i) CHECK(M.coeff(i, i) == kerf_test::relative(rho * V / 10.0, 1e-13));
     CHECK(M.nonZeros() == 30);
   }
 }

@@ -20,6 +20,7 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -92,7 +93,7 @@ TEST_CASE("Newmark's average acceleration: the beam under sudden gravity follows
     CHECK(worst_exact_phase > 1e-2 * std::abs(q_static));
   }
   // The period elongation this is, at omega dt = 1: 1 / (2 atan(1/2)) = 1.0783.
-  CHECK(1.0 / (2.0 * std::atan(0.5)) == doctest::Approx(1.078).epsilon(1e-3));
+  CHECK(1.0 / (2.0 * std::atan(0.5)) == kerf_test::relative(1.078, 1e-3));
 }
 
 TEST_CASE("Newmark with Rayleigh damping: mode 1 decays as c1 lambda1^n + c2 lambda2^n, and the account's dissipation is the energy lost") {
@@ -104,7 +105,7 @@ TEST_CASE("Newmark with Rayleigh damping: mode 1 decays as c1 lambda1^n + c2 lam
   beam.system.load = [n = beam.system.M.rows()](double) { return Eigen::VectorXd::Zero(n).eval(); };
   const kerf::ReducedDynamicSystem reduced(beam.system);
   const double xi = alpha / (2.0 * omega) + beta * omega / 2.0;
-  CHECK(xi == doctest::Approx(xi_target).epsilon(1e-12));
+  CHECK(xi == kerf_test::relative(xi_target, 1e-12));
   const double dt = 0.5 / omega;
   // Free vibration from u0 = phi_1 (scaled to 1 mm at most), at rest.
   const Eigen::VectorXd phi = reduced.expand(beam.modes.phi.col(0), false);
@@ -153,9 +154,9 @@ TEST_CASE("backward Euler: mode 1 free vibration loses 1 - 1 / (1 + omega^2 dt^2
     for (int n = 0; n < steps; ++n) kerf::add_step(account, beam.system, state, euler.step(state));
     const double expected = start * std::pow(1.0 + omega_dt * omega_dt, -steps);
     // The other modes' 3e-7 share of the vector carries 1e-13 of the energy: 1e-9 is loose.
-    CHECK(account.kinetic + account.elastic == doctest::Approx(expected).epsilon(1e-9));
+    CHECK(account.kinetic + account.elastic == kerf_test::relative(expected, 1e-9));
     // The account books the loss as numerical dissipation, to round-off.
-    CHECK(account.numerical == doctest::Approx(start - expected).epsilon(1e-9));
+    CHECK(account.numerical == kerf_test::relative(start - expected, 1e-9));
   }
 }
 
@@ -182,9 +183,9 @@ TEST_CASE("lowest_eigenmodes on spring chains: lambda_k = 4 sin^2(k pi / (2 (n +
   REQUIRE(free_modes.converged);
   for (int k = 0; k < count; ++k) {
     // Converged to 1e-12 relative; the closed form is evaluated to round-off.
-    CHECK(fixed_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin((k + 1) * std::numbers::pi / (2.0 * (n + 1))), 2)).epsilon(1e-10));
+    CHECK(fixed_modes.lambda[k] == kerf_test::relative(4.0 * std::pow(std::sin((k + 1) * std::numbers::pi / (2.0 * (n + 1))), 2), 1e-10));
     if (k == 0) CHECK(std::abs(free_modes.lambda[0]) < 1e-12);
-    else CHECK(free_modes.lambda[k] == doctest::Approx(4.0 * std::pow(std::sin(k * std::numbers::pi / (2.0 * n)), 2)).epsilon(1e-10));
+    else CHECK(free_modes.lambda[k] == kerf_test::relative(4.0 * std::pow(std::sin(k * std::numbers::pi / (2.0 * n)), 2), 1e-10));
   }
   CHECK_THROWS_AS(kerf::lowest_eigenmodes(K_fixed, M, 0), std::invalid_argument);
   CHECK_THROWS_AS(kerf::lowest_eigenmodes(K_fixed, M, n + 1), std::invalid_argument);

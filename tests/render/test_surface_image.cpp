@@ -8,6 +8,7 @@
 #include "kerf/render/surface_image.hpp"
 #include "kerf/render/warped_surface.hpp"
 #include "support/run_program.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -40,7 +41,7 @@ TEST_CASE("a closed cut: the picture has the requested size, is not blank, and t
   // the camera stands where CameraView says, with z up.
   const render_test::ScanLine up = render_test::scan_column(*image, 150);
   const render_test::ScanLine across = render_test::scan_row(*image, (up.first + up.last) / 2);
-  CHECK(static_cast<double>(up.extent()) / across.extent() == doctest::Approx(2.0).epsilon(0.03));
+  CHECK(static_cast<double>(up.extent()) / across.extent() == kerf_test::relative(2.0, 0.03));
   // The two pieces touch along z = 1: no background shows between them.
   CHECK(up.background_between == 0);
   CHECK(across.background_between == 0);
@@ -57,12 +58,12 @@ TEST_CASE("a cut opened by the displacement shows the background in the gap, s *
   const vtkSmartPointer<vtkImageData> open = draw_two_pieces("open", 0.3, 1.0);
   const render_test::ScanLine up = render_test::scan_column(*open, 150);
   CHECK(up.background_between > 0);
-  CHECK(static_cast<double>(up.background_between) / up.extent() == doctest::Approx(0.3 / 2.3).epsilon(0.08));
+  CHECK(static_cast<double>(up.background_between) / up.extent() == kerf_test::relative(0.3 / 2.3, 0.08));
 
   // Warped twice as much, the gap is 0.6 m of 2.6 m.
   const vtkSmartPointer<vtkImageData> twice = draw_two_pieces("open_twice", 0.3, 2.0);
   const render_test::ScanLine up_twice = render_test::scan_column(*twice, 150);
-  CHECK(static_cast<double>(up_twice.background_between) / up_twice.extent() == doctest::Approx(0.6 / 2.6).epsilon(0.05));
+  CHECK(static_cast<double>(up_twice.background_between) / up_twice.extent() == kerf_test::relative(0.6 / 2.6, 0.05));
 
   // Not warped, the same file draws the cut closed.
   const vtkSmartPointer<vtkImageData> unmoved = draw_two_pieces("open_unwarped", 0.3, 0.0);
@@ -77,7 +78,7 @@ TEST_CASE("a clip plane draws the part of the body on the side its normal points
   const vtkSmartPointer<vtkImageData> image = draw_two_pieces("clipped", 0.0, 1.0, render_test::front_view(), clip);
   const render_test::ScanLine up = render_test::scan_column(*image, 150);
   const render_test::ScanLine across = render_test::scan_row(*image, (up.first + up.last) / 2);
-  CHECK(static_cast<double>(up.extent()) / across.extent() == doctest::Approx(2.0 / 0.3).epsilon(0.05));
+  CHECK(static_cast<double>(up.extent()) / across.extent() == kerf_test::relative(2.0 / 0.3, 0.05));
 }
 
 TEST_CASE("the colours follow |u| (blue at rest, red where it is largest) or the piece, one colour per value") {

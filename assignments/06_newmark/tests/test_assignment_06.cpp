@@ -9,6 +9,7 @@
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/mesh/tet_mesh.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -105,8 +106,8 @@ TEST_CASE("newmark_correct: the state at t_next on every DOF, the held node at u
       CHECK(state.u[i] == system.dofs.prescribed[i]);
       CHECK(state.v[i] == 0.0);
       CHECK(state.a[i] == 0.0);
-      CHECK(state.u[3 + i] == doctest::Approx(predicted.u[i] + p.beta * dt * dt * a_next[i]).epsilon(1e-14));
-      CHECK(state.v[3 + i] == doctest::Approx(predicted.v[i] + p.gamma * dt * a_next[i]).epsilon(1e-14));
+      CHECK(state.u[3 + i] == kerf_test::relative(predicted.u[i] + p.beta * dt * dt * a_next[i], 1e-14));
+      CHECK(state.v[3 + i] == kerf_test::relative(predicted.v[i] + p.gamma * dt * a_next[i], 1e-14));
       CHECK(state.a[3 + i] == a_next[i]);
     }
   }
@@ -130,7 +131,7 @@ TEST_CASE("NewmarkIntegrator::step: the equations of motion at t_{n+1}, Newmark'
       const kerf::DynamicState old = state;
       const kerf::StepEnergy e = newmark.step(state);
       REQUIRE(state.u.size() == 6);
-      CHECK(state.t == doctest::Approx(old.t + dt).epsilon(1e-15));
+      CHECK(state.t == kerf_test::relative(old.t + dt, 1e-15));
       // The equations of motion on the free DOFs at t_{n+1} (the held node has v = a = 0, so only
       // its K u_c acts): the residual, against the forces' size (order 10), is round-off.
       const Eigen::VectorXd residual = system.M * state.a + system.C * state.v + system.K * state.u - system.load(state.t);
@@ -294,7 +295,7 @@ TEST_CASE("lump_cut_xfem_mass: every scheme entry by entry on a whole and a cut 
     const std::vector<Eigen::MatrixXd> pieces = kerf::cut_xfem_piece_masses(body.model, 0, 1.0, cut_body::subtets);
     if (volume_minus > 0.0) {
       const double smaller = std::min(pieces[0].sum(), pieces[1].sum());
-      REQUIRE(smaller == doctest::Approx(std::min(volume_minus, V - volume_minus)).epsilon(1e-12));
+      REQUIRE(smaller == kerf_test::relative(std::min(volume_minus, V - volume_minus), 1e-12));
     }
     for (const kerf::LumpingScheme scheme : all_schemes) {
       CAPTURE(std::string(name_of(scheme)));

@@ -2,6 +2,7 @@
 // leaves out: ends a hair off the triangle's plane, which exact predicates put on their side and a
 // tolerance would put on the sheet; and the crossing point's parameter in closed form.
 #include "kerf/cut/semi_progressive_cut.hpp"
+#include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>
 
@@ -27,7 +28,7 @@ TEST_CASE("edge_triangle_contact: ends 1e-12 off the plane are on their side, no
     const kerf::EdgeTriangleContact below = kerf::edge_triangle_contact(sheet, {0.5, 0.5, z}, {0.5, 0.5, 1.0});
     CHECK_FALSE(below.end_on_sheet[0]);
     CHECK(below.crossed);
-    CHECK(below.parameter == doctest::Approx((0.25 - z) / (1.0 - z)).epsilon(1e-12));
+    CHECK(below.parameter == kerf_test::relative((0.25 - z) / (1.0 - z), 1e-12));
   }
   // Exactly in the plane: on the sheet, not crossed.
   const kerf::EdgeTriangleContact on = kerf::edge_triangle_contact(sheet, {0.5, 0.5, 0.25}, {0.5, 0.5, 1.0});
@@ -39,10 +40,10 @@ TEST_CASE("edge_triangle_contact: the crossing parameter s = h_a / (h_a - h_b) f
   // An edge from z = 0 to z = 1 through z = 1/4: s = 1/4 from x_a, 3/4 the other way round.
   const kerf::EdgeTriangleContact up = kerf::edge_triangle_contact(sheet, {0.5, 0.25, 0.0}, {0.25, 0.5, 1.0});
   REQUIRE(up.crossed);
-  CHECK(up.parameter == doctest::Approx(0.25).epsilon(1e-15));
+  CHECK(up.parameter == kerf_test::relative(0.25, 1e-15));
   const kerf::EdgeTriangleContact down = kerf::edge_triangle_contact(sheet, {0.25, 0.5, 1.0}, {0.5, 0.25, 0.0});
   REQUIRE(down.crossed);
-  CHECK(down.parameter == doctest::Approx(0.75).epsilon(1e-15));
+  CHECK(down.parameter == kerf_test::relative(0.75, 1e-15));
   // Beside the triangle (x + y > 2 at z = 1/4): not crossed.
   CHECK_FALSE(kerf::edge_triangle_contact(sheet, {1.5, 1.5, 0.0}, {1.5, 1.5, 1.0}).crossed);
 }
