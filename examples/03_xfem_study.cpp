@@ -58,10 +58,10 @@
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/scene/scene.hpp"
+#include "kerf/scene/xfem_loads.hpp"
 #include "kerf/solve/linear_solver.hpp"
 #include "kerf/xfem/enrichment.hpp"
 #include "kerf/xfem/xfem_field.hpp"
-#include "kerf/xfem/xfem_loads.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 #include "measure.hpp" // bench/measure.hpp: the command line shared with the benchmarks
 #include "reference_field.hpp"

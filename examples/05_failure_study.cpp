@@ -12,7 +12,7 @@
    crack through the whole thickness that ends inside along its front. We assemble the linear
    XFEM stiffness K_ff (branch functions integrated by the collapsed rule on the front tets,
    front_quadrature.hpp) and write its 2-norm condition number (dense eigenvalues,
-   xfem/stiffness_conditioning.hpp) bare, Jacobi-scaled, with Koschier's bilateral diagonal
+   dynamics/stiffness_conditioning.hpp) bare, Jacobi-scaled, with Koschier's bilateral diagonal
    (eqs. 23-27 on the sign DOFs, 1 on the branch DOFs), in the part basis then Jacobi-scaled,
    and with Bechet et al.'s node blocks (the Cholesky factor of each node's diagonal block).
 
@@ -38,11 +38,11 @@
    Read chapter 5 first. */
 
 #include "kerf/cut/rectangle_cut.hpp"
+#include "kerf/dynamics/stiffness_conditioning.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/quadrature/gauss_piece_rules.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
-#include "kerf/xfem/stiffness_conditioning.hpp"
 #include "measure.hpp" // bench/measure.hpp: the command line shared with the benchmarks
 
 #include <Eigen/Geometry>

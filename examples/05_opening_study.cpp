@@ -61,6 +61,7 @@
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/point_locator.hpp"
+#include "kerf/scene/cut_xfem_loads.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_crack_tip.hpp"
 #include "kerf/scene/scene_cuts.hpp"
@@ -68,7 +69,6 @@
 #include "kerf/scene/scene_quadrature.hpp"
 #include "kerf/scene/scene_xfem_dofs.hpp"
 #include "kerf/solve/linear_solver.hpp"
-#include "kerf/xfem/cut_xfem_loads.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "measure.hpp" // bench/measure.hpp: the command line shared with the benchmarks
 

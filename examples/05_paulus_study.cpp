@@ -49,10 +49,10 @@
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/mesh/point_locator.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
+#include "kerf/scene/cut_xfem_loads.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/solve/linear_solver.hpp"
 #include "kerf/xfem/crack_tip_body.hpp"
-#include "kerf/xfem/cut_xfem_loads.hpp"
 #include "measure.hpp" // bench/measure.hpp: the command line shared with the benchmarks
 #include "reference_field.hpp"
 

@@ -41,9 +41,9 @@
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/scene/scene_quasi_static.hpp"
 #include "kerf/scene/scene_xfem_dofs.hpp"
+#include "kerf/scene/xfem_loads.hpp"
 #include "kerf/xfem/enrichment.hpp"
 #include "kerf/xfem/xfem_field.hpp"
-#include "kerf/xfem/xfem_loads.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 
 #include <chrono>

@@ -44,6 +44,7 @@
 #include "kerf/io/write_front_polyline.hpp"
 #include "kerf/io/write_vtu.hpp"
 #include "kerf/mesh/boundary_faces.hpp"
+#include "kerf/scene/cut_xfem_loads.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_crack_tip.hpp"
 #include "kerf/scene/scene_cuts.hpp"
@@ -53,7 +54,6 @@
 #include "kerf/scene/scene_williams.hpp"
 #include "kerf/scene/scene_xfem_dofs.hpp"
 #include "kerf/xfem/branch_enrichment.hpp"
-#include "kerf/xfem/cut_xfem_loads.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/cut_xfem_output.hpp"
 

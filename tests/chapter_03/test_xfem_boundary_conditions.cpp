@@ -10,8 +10,8 @@
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/scene/scene_xfem_dofs.hpp"
+#include "kerf/scene/xfem_loads.hpp"
 #include "kerf/xfem/xfem_field.hpp"
-#include "kerf/xfem/xfem_loads.hpp"
 #include "support/relative_approx.hpp"
 
 #include <doctest/doctest.h>

@@ -11,9 +11,9 @@
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/mesh/node_region.hpp"
 #include "kerf/scene/scene.hpp"
+#include "kerf/scene/xfem_loads.hpp"
 #include "kerf/solve/linear_solver.hpp"
 #include "kerf/xfem/xfem_field.hpp"
-#include "kerf/xfem/xfem_loads.hpp"
 
 #include <doctest/doctest.h>
 

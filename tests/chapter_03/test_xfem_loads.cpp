@@ -9,8 +9,8 @@
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_mesh.hpp"
+#include "kerf/scene/xfem_loads.hpp"
 #include "kerf/xfem/xfem_field.hpp"
-#include "kerf/xfem/xfem_loads.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 
 #include <doctest/doctest.h>

@@ -12,11 +12,11 @@
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/mesh/tet10_from_tet4.hpp"
 #include "kerf/quadrature/gauss_piece_rules.hpp"
+#include "kerf/scene/xfem_loads.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 #include "kerf/xfem/enrichment.hpp"
 #include "kerf/xfem/surface_enrichment.hpp"
 #include "kerf/xfem/xfem_field.hpp"
-#include "kerf/xfem/xfem_loads.hpp"
 #include "kerf/xfem/xfem_model.hpp"
 
 #include <doctest/doctest.h>

@@ -15,12 +15,12 @@
 #include "kerf/mesh/boundary_faces.hpp"
 #include "kerf/mesh/point_locator.hpp"
 #include "kerf/quadrature/front_quadrature.hpp"
+#include "kerf/scene/cut_xfem_loads.hpp"
 #include "kerf/scene/scene.hpp"
 #include "kerf/scene/scene_crack_tip.hpp"
 #include "kerf/scene/scene_cuts.hpp"
 #include "kerf/scene/scene_mesh.hpp"
 #include "kerf/scene/scene_quadrature.hpp"
-#include "kerf/xfem/cut_xfem_loads.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include <doctest/doctest.h>

@@ -1,14 +1,14 @@
 // The conditioning of the static stiffness K_ff with crack-tip (branch) DOFs
-// (xfem/stiffness_conditioning.hpp): how the condition number grows with the geometric
+// (dynamics/stiffness_conditioning.hpp): how the condition number grows with the geometric
 // enrichment radius, without a cure and with one, as growth exponents measured on a small box
 // (dense eigenvalues); and Bechet's node-block preconditioner against what it must do on any
 // symmetric positive definite matrix. (The front nearing a node or a face is in
 // examples/05_failure_study.cpp only: a front within 1e-2 h of a node or a face costs the
 // collapsed rule's grading a million points and minutes per model, too slow for a test.)
 #include "kerf/dynamics/newton_matrix_conditioning.hpp"
+#include "kerf/dynamics/stiffness_conditioning.hpp"
 #include "kerf/mesh/box_mesh.hpp"
 #include "kerf/xfem/node_block_preconditioner.hpp"
-#include "kerf/xfem/stiffness_conditioning.hpp"
 
 #include "support/tip_body.hpp"
 

@@ -1,6 +1,6 @@
 #include "kerf/scene/scene_dynamic_mass.hpp"
 
-#include "kerf/xfem/cut_xfem_loads.hpp"
+#include "kerf/scene/cut_xfem_loads.hpp"
 #include "kerf/xfem/cut_xfem_mass.hpp"
 
 namespace kerf {

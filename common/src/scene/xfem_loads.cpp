@@ -1,4 +1,4 @@
-#include "kerf/xfem/xfem_loads.hpp"
+#include "kerf/scene/xfem_loads.hpp"
 
 #include <Eigen/Dense>
 

@@ -1,4 +1,4 @@
-#include "kerf/xfem/stiffness_conditioning.hpp"
+#include "kerf/dynamics/stiffness_conditioning.hpp"
 
 #include "kerf/dynamics/bilateral_preconditioner.hpp"
 #include "kerf/dynamics/newton_matrix_conditioning.hpp"

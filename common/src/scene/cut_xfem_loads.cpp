@@ -1,4 +1,4 @@
-#include "kerf/xfem/cut_xfem_loads.hpp"
+#include "kerf/scene/cut_xfem_loads.hpp"
 
 #include "kerf/app/input_error.hpp"
 #include "kerf/fem/assemble_loads.hpp"
