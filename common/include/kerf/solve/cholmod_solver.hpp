@@ -45,12 +45,20 @@ public:
   /// A X = B for several right-hand sides at once (one pass over the factor for all of them).
   void solve_columns(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
   int factorisations() const override { return factorisations_; }
+  /// The two halves of solve_columns, for a solver that puts rows of its own between them
+  /// (growing_cholesky.hpp), with A = P^T L L^T P: Z = L^{-1} P B, the sweep down the factor, and
+  /// X = P^T L^{-T} Z, the sweep up.
+  void solve_down(const Eigen::MatrixXd& B, Eigen::MatrixXd& Z);
+  void solve_up(const Eigen::MatrixXd& Z, Eigen::MatrixXd& X);
 
   /// The counts of the last analyze_pattern.
   const CholmodStatistics& statistics() const { return statistics_; }
 
 private:
   struct Cholmod; ///< CHOLMOD's workspace and factor; cholmod.h stays out of this header
+  // cholmod_solve2 of `system` (a CHOLMOD_ constant) for B, into Cholmod::solution or, for the
+  // first of two systems in a row, Cholmod::halfway; checks B as solve_columns does.
+  void solve_system(int system, const Eigen::MatrixXd& B, bool halfway);
   std::unique_ptr<Cholmod> cholmod_;
   std::string ordering_;
   CholmodStatistics statistics_;
