@@ -1,5 +1,6 @@
-// CorotatedPieces::step_terms for the whole tets, four at a time: the pass
-// chapter 8's step makes five or more times a step, written so that each operation acts on four
+// CorotatedPieces::step_terms four pieces at a time, the whole tets (four slots) and the special
+// pieces of cut tets (eight, those a piece lacks with a zero gradient): the pass chapter 8's step
+// makes five or more times a step, written so that each operation acts on four
 // pieces with one vector instruction (AVX2 and FMA where the processor has them, chosen when the
 // program starts; two SSE2 instructions elsewhere). The arithmetic is the scalar pass's
 // (corotated_pieces.cpp), lane by lane: F (8.1), the warm rotation's Newton iterations with the
@@ -33,7 +34,8 @@ struct LaneResults {
   int scalar[4]; // 1: not done here (no force added, rotation not stored)
 };
 
-// The block's data, as plain arrays (PieceBlock's layout).
+// The block's data, as plain arrays (PieceBlockOf's layout), `slots` slots a lane.
+template <int slots>
 struct BlockView {
   const int (*dof)[4];             // [slot][lane]
   const double (*gradient)[3][4];  // [slot][component][lane]
@@ -41,24 +43,35 @@ struct BlockView {
   const std::size_t* piece;        // [lane]
 };
 
+// The block's gradients g_s, lane by lane, and sum_s q_s g_s^T with q gathered lane by lane.
+template <int slots>
+__attribute__((always_inline)) inline void load_gradients(const BlockView<slots>& block, Lanes (&g)[slots][3]) {
+  for (int s = 0; s < slots; ++s)
+    for (int i = 0; i < 3; ++i) std::memcpy(&g[s][i], block.gradient[s][i], sizeof(Lanes));
+}
+template <int slots>
+__attribute__((always_inline)) inline void gradient_sum(const BlockView<slots>& block, const Lanes (&g)[slots][3], const double* q,
+                                                        Lanes3x3& sum) {
+  for (Lanes& v : sum.m) v = Lanes{0, 0, 0, 0};
+  for (int s = 0; s < slots; ++s) {
+    const int* dof = block.dof[s];
+    for (int i = 0; i < 3; ++i) {
+      const Lanes q_i = {q[dof[0] + i], q[dof[1] + i], q[dof[2] + i], q[dof[3] + i]};
+      for (int j = 0; j < 3; ++j) sum.m[i + 3 * j] += q_i * g[s][j];
+    }
+  }
+}
+
 // The pass over one block. Inlined into two functions below, one compiled for AVX2 and FMA.
-__attribute__((always_inline)) inline void block_pass(const BlockView& block, const double* u, const double* reference_sums,
+template <int slots>
+__attribute__((always_inline)) inline void block_pass(const BlockView<slots>& block, const double* u, const double* reference_sums,
                                                       const double* turned, double* rotations, double* force, double c, double mu,
                                                       double lambda, double tolerance, LaneResults& out) {
   const Lanes zero = {0, 0, 0, 0}, one = {1, 1, 1, 1};
-  Lanes g[4][3]; // [slot][component]
-  for (int s = 0; s < 4; ++s)
-    for (int i = 0; i < 3; ++i) std::memcpy(&g[s][i], block.gradient[s][i], sizeof(Lanes));
-  // grad u = sum_s u_s g_s^T (8.1), u gathered lane by lane.
-  Lanes3x3 grad_u;
-  for (Lanes& v : grad_u.m) v = zero;
-  for (int s = 0; s < 4; ++s) {
-    const int* dof = block.dof[s];
-    for (int i = 0; i < 3; ++i) {
-      const Lanes u_i = {u[dof[0] + i], u[dof[1] + i], u[dof[2] + i], u[dof[3] + i]};
-      for (int j = 0; j < 3; ++j) grad_u.m[i + 3 * j] += u_i * g[s][j];
-    }
-  }
+  Lanes g[slots][3]; // [slot][component]
+  load_gradients(block, g);
+  Lanes3x3 grad_u; // sum_s u_s g_s^T (8.1)
+  gradient_sum(block, g, u, grad_u);
   Lanes3x3 F = grad_u;
   F.m[0] += one, F.m[4] += one, F.m[8] += one;
   const Lanes det_F = F.m[0] * (F.m[4] * F.m[8] - F.m[5] * F.m[7]) - F.m[3] * (F.m[1] * F.m[8] - F.m[2] * F.m[7]) +
@@ -143,7 +156,7 @@ __attribute__((always_inline)) inline void block_pass(const BlockView& block, co
       P.m[i + 3 * j] = volume * (R.m[i] * strain.m[3 * j] + R.m[i + 3] * strain.m[1 + 3 * j] + R.m[i + 6] * strain.m[2 + 3 * j] +
                                  c * (Q.m[i] * rate.m[3 * j] + Q.m[i + 3] * rate.m[1 + 3 * j] + Q.m[i + 6] * rate.m[2 + 3 * j]));
   // The forces P g_s, scattered lane by lane; the rotations stored.
-  for (int s = 0; s < 4; ++s)
+  for (int s = 0; s < slots; ++s)
     for (int i = 0; i < 3; ++i) {
       const Lanes f = P.m[i] * g[s][0] + P.m[i + 3] * g[s][1] + P.m[i + 6] * g[s][2];
       for (int lane = 0; lane < 4; ++lane)
@@ -158,43 +171,112 @@ __attribute__((always_inline)) inline void block_pass(const BlockView& block, co
   }
 }
 
-using BlockPass = void (*)(const BlockView&, const double*, const double*, const double*, double*, double*, double, double, double, double,
-                           LaneResults&);
+template <int slots>
+using BlockPass = void (*)(const BlockView<slots>&, const double*, const double*, const double*, double*, double*, double, double, double,
+                           double, LaneResults&);
 
-__attribute__((target("avx2,fma"))) void block_pass_avx2(const BlockView& block, const double* u, const double* reference_sums,
+template <int slots>
+__attribute__((target("avx2,fma"))) void block_pass_avx2(const BlockView<slots>& block, const double* u, const double* reference_sums,
                                                          const double* turned, double* rotations, double* force, double c, double mu,
                                                          double lambda, double tolerance, LaneResults& out) {
   block_pass(block, u, reference_sums, turned, rotations, force, c, mu, lambda, tolerance, out);
 }
 
-void block_pass_sse2(const BlockView& block, const double* u, const double* reference_sums, const double* turned, double* rotations,
+template <int slots>
+void block_pass_sse2(const BlockView<slots>& block, const double* u, const double* reference_sums, const double* turned, double* rotations,
                      double* force, double c, double mu, double lambda, double tolerance, LaneResults& out) {
   block_pass(block, u, reference_sums, turned, rotations, force, c, mu, lambda, tolerance, out);
 }
 
 // AVX2 and FMA where this processor has both (asked once, when first needed), else SSE2, which
 // every x86-64 has.
-BlockPass chosen_block_pass() {
-  static const BlockPass pass = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? block_pass_avx2 : block_pass_sse2;
+template <int slots>
+BlockPass<slots> chosen_block_pass() {
+  static const BlockPass<slots> pass =
+      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? block_pass_avx2<slots> : block_pass_sse2<slots>;
+  return pass;
+}
+
+// K_R d at the rotations `turned`, four pieces at a time (CorotatedPieces::warped_product):
+// D = sum_s d_s g_s^T, the strain sym(Q^T D), sigma, the force V Q sigma g_s; its energy
+// V psi into half_dKd, lane by lane.
+template <int slots>
+__attribute__((always_inline)) inline void warped_block_pass(const BlockView<slots>& block, const double* d, const double* turned,
+                                                             double* K_d, double mu, double lambda, double* half_dKd) {
+  const Lanes zero = {0, 0, 0, 0};
+  Lanes g[slots][3];
+  load_gradients(block, g);
+  Lanes3x3 D, Q, B;
+  gradient_sum(block, g, d, D);
+  for (int k = 0; k < 9; ++k)
+    Q.m[k] = Lanes{turned[9 * block.piece[0] + k], turned[9 * block.piece[1] + k], turned[9 * block.piece[2] + k], turned[9 * block.piece[3] + k]};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) B.m[i + 3 * j] = Q.m[3 * i] * D.m[3 * j] + Q.m[1 + 3 * i] * D.m[1 + 3 * j] + Q.m[2 + 3 * i] * D.m[2 + 3 * j];
+  Lanes3x3 strain;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) strain.m[i + 3 * j] = 0.5 * (B.m[i + 3 * j] + B.m[j + 3 * i]);
+  const Lanes trace = strain.m[0] + strain.m[4] + strain.m[8];
+  Lanes squared = zero;
+  for (int m = 0; m < 9; ++m) squared += strain.m[m] * strain.m[m];
+  Lanes volume;
+  std::memcpy(&volume, block.volume, sizeof(Lanes));
+  const Lanes energy = volume * (mu * squared + 0.5 * lambda * trace * trace);
+  for (int m = 0; m < 9; ++m) strain.m[m] *= 2.0 * mu;
+  for (int m = 0; m < 9; m += 4) strain.m[m] += lambda * trace;
+  Lanes3x3 P;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      P.m[i + 3 * j] = volume * (Q.m[i] * strain.m[3 * j] + Q.m[i + 3] * strain.m[1 + 3 * j] + Q.m[i + 6] * strain.m[2 + 3 * j]);
+  for (int s = 0; s < slots; ++s)
+    for (int i = 0; i < 3; ++i) {
+      const Lanes f = P.m[i] * g[s][0] + P.m[i + 3] * g[s][1] + P.m[i + 6] * g[s][2];
+      for (int lane = 0; lane < 4; ++lane) K_d[block.dof[s][lane] + i] += f[lane];
+    }
+  for (int lane = 0; lane < 4; ++lane) half_dKd[lane] = energy[lane];
+}
+
+template <int slots>
+using WarpedPass = void (*)(const BlockView<slots>&, const double*, const double*, double*, double, double, double*);
+
+template <int slots>
+__attribute__((target("avx2,fma"))) void warped_block_pass_avx2(const BlockView<slots>& block, const double* d, const double* turned,
+                                                                double* K_d, double mu, double lambda, double* half_dKd) {
+  warped_block_pass(block, d, turned, K_d, mu, lambda, half_dKd);
+}
+
+template <int slots>
+void warped_block_pass_sse2(const BlockView<slots>& block, const double* d, const double* turned, double* K_d, double mu, double lambda,
+                            double* half_dKd) {
+  warped_block_pass(block, d, turned, K_d, mu, lambda, half_dKd);
+}
+
+template <int slots>
+WarpedPass<slots> chosen_warped_pass() {
+  static const WarpedPass<slots> pass =
+      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? warped_block_pass_avx2<slots> : warped_block_pass_sse2<slots>;
   return pass;
 }
 
 } // namespace
 
-CorotatedPieces::StepTerms CorotatedPieces::block_step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums,
-                                                             double c, const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
-                                                             std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
+// The blocks' pass, and the lanes it leaves to the scalar way (piece_step_terms).
+template <int slots, class Block>
+CorotatedPieces::StepTerms CorotatedPieces::blocks_step_terms(const std::vector<Block>& blocks, const double* volumes, const Eigen::VectorXd& u,
+                                                              const std::vector<Eigen::Matrix3d>& reference_sums, double c,
+                                                              const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
+                                                              std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
   StepTerms terms;
   LaneResults lanes;
-  const BlockPass pass = chosen_block_pass();
-  for (const PieceBlock& block : whole_->blocks) {
-    const BlockView view{block.dof, block.gradient, &whole_volume_[block.piece[0]], block.piece};
+  const BlockPass<slots> pass = chosen_block_pass<slots>();
+  for (const Block& block : blocks) {
+    const BlockView<slots> view{block.dof, block.gradient, volumes, block.piece};
+    volumes += 4;
     pass(view, u.data(), reference_sums.data()->data(), turned.data()->data(), rotations.data()->data(), force.data(), c, mu_, lambda_,
-               turn_tolerance, lanes);
+         turn_tolerance, lanes);
     for (int lane = 0; lane < 4; ++lane) {
+      if (view.volume[lane] == 0.0) continue; // a special tet's whole piece, or a lane without a piece
       if (lanes.scalar[lane]) {
         const std::size_t p = block.piece[lane];
-        if (view.volume[lane] == 0.0) continue; // a special tet's whole piece: nothing to redo
         const StepTerms piece = piece_step_terms(p, u, reference_sums[p], c, turned[p], force, rotations[p], turn_tolerance);
         terms.W += piece.W;
         terms.half_dKd += piece.half_dKd;
@@ -205,6 +287,39 @@ CorotatedPieces::StepTerms CorotatedPieces::block_step_terms(const Eigen::Vector
     }
   }
   return terms;
+}
+
+CorotatedPieces::StepTerms CorotatedPieces::block_step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums,
+                                                             double c, const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
+                                                             std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
+  StepTerms terms = blocks_step_terms<4>(whole_->blocks, whole_volume_.data(), u, reference_sums, c, turned, force, rotations, turn_tolerance);
+  const StepTerms special = blocks_step_terms<8>(special_blocks_, special_block_volume_.data(), u, reference_sums, c, turned, force, rotations,
+                                                 turn_tolerance);
+  terms.W += special.W;
+  terms.half_dKd += special.half_dKd;
+  return terms;
+}
+
+// K_R d and 1/2 d^T K_R d of one kind of block.
+template <int slots, class Block>
+double CorotatedPieces::blocks_warped_product(const std::vector<Block>& blocks, const double* volumes,
+                                              const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d,
+                                              Eigen::VectorXd& K_d) const {
+  const WarpedPass<slots> pass = chosen_warped_pass<slots>();
+  double half_dKd = 0.0, lanes[4];
+  for (const Block& block : blocks) {
+    const BlockView<slots> view{block.dof, block.gradient, volumes, block.piece};
+    volumes += 4;
+    pass(view, d.data(), rotations.data()->data(), K_d.data(), mu_, lambda_, lanes);
+    half_dKd += (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
+  }
+  return half_dKd;
+}
+
+double CorotatedPieces::block_warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d,
+                                             Eigen::VectorXd& K_d) const {
+  return blocks_warped_product<4>(whole_->blocks, whole_volume_.data(), rotations, d, K_d) +
+         blocks_warped_product<8>(special_blocks_, special_block_volume_.data(), rotations, d, K_d);
 }
 
 } // namespace kerf

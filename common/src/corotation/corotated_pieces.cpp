@@ -120,6 +120,7 @@ CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial
     double pieces_volume = 0.0;
     for (int p = 0; p < model.num_integrated_pieces(T); ++p) {
       volume_.push_back(model.integrated_volume(T, p));
+      piece_tet_.push_back(static_cast<int>(t));
       pieces_volume += volume_.back();
       for (int a = 0; a < 4; ++a) {
         const int node = mesh.tets(T, a);
@@ -138,10 +139,29 @@ CorotatedPieces::CorotatedPieces(const CutXfemModel& model, const LinearMaterial
     }
     largest_volume_mismatch_ = std::max(largest_volume_mismatch_, std::abs(pieces_volume - whole_->volume[t]) / whole_->volume[t]);
   }
-  // The blocks leave the last num_tets_ % 4 whole tets, and the special pieces.
+  // The special pieces four to a block; the whole tets' blocks leave the last num_tets_ % 4.
+  const std::size_t special_pieces = volume_.size();
+  special_blocks_.resize((special_pieces + 3) / 4);
+  special_block_volume_.assign(4 * special_blocks_.size(), 0.0);
+  for (std::size_t k = 0; k < special_blocks_.size(); ++k) {
+    SpecialBlock& block = special_blocks_[k];
+    for (int lane = 0; lane < 4; ++lane) {
+      const std::size_t index = 4 * k + static_cast<std::size_t>(lane);
+      const bool present = index < special_pieces;
+      const std::size_t q = present ? index : 4 * k; // a lane without a piece repeats lane 0's, with no volume
+      if (present) special_block_volume_[index] = volume_[q];
+      block.piece[lane] = num_tets_ + q;
+      const Slots slot = slots(num_tets_ + q);
+      if (slot.count > 8) throw std::logic_error("CorotatedPieces: a piece with more than eight slots");
+      for (int s = 0; s < slot.count; ++s) {
+        block.dof[s][lane] = 3 * slot.node[s];
+        for (int i = 0; i < 3; ++i) block.gradient[s][i][lane] = slot.gradient[s][i];
+      }
+      for (int s = slot.count; s < 8; ++s) block.dof[s][lane] = 3 * slot.node[0]; // a zero gradient: adds nothing
+    }
+  }
   for (std::size_t t = 4 * whole_->blocks.size(); t < num_tets_; ++t)
     if (!special[t]) unblocked_.push_back(t);
-  for (std::size_t q = 0; q < volume_.size(); ++q) unblocked_.push_back(num_tets_ + q);
 }
 
 CorotatedPieces::Slots CorotatedPieces::slots(std::size_t p) const {
@@ -192,14 +212,19 @@ double CorotatedPieces::energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int,
   return W;
 }
 
+void CorotatedPieces::warm_rotations(std::vector<Eigen::Matrix3d>& rotations) const {
+  if (rotations.size() < num_tets_) throw std::invalid_argument("CorotatedPieces::warm_rotations: expected one rotation per tet at least");
+  rotations.resize(num_tets_ + piece_tet_.size());
+  for (std::size_t q = 0; q < piece_tet_.size(); ++q) rotations[num_tets_ + q] = rotations[static_cast<std::size_t>(piece_tet_[q])];
+}
+
 double CorotatedPieces::warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d,
                                        Eigen::VectorXd& K_d) const {
   const auto n = static_cast<std::size_t>(num_pieces());
   if (rotations.size() != n) throw std::invalid_argument("CorotatedPieces::warped_product: expected one rotation per piece");
   K_d.setZero(d.size());
-  double half_dKd = 0.0;
-  for (std::size_t p = 0; p < n; ++p) {
-    if (volume(p) == 0.0) continue;
+  double half_dKd = block_warped_product(rotations, d, K_d);
+  for (std::size_t p : unblocked_) {
     // The linear strain sym(R^T D) of the displacement d seen in the piece's turned frame.
     const Eigen::Matrix3d strain = symmetric_part(rotations[p].transpose() * gradient_sum(d, p));
     half_dKd += volume(p) * energy_density(strain);

@@ -63,6 +63,8 @@ void QuasiNewtonNewmark::set_body(QuasiNewtonBody body) {
   body_ = std::move(body);
   last_valid_ = false;
   pairs_.clear();
+  // The rotations the last body ended with start the new body's (a cut turns nothing).
+  if (last_rotations_.size() >= static_cast<std::size_t>(body_.pieces->num_tets())) body_.pieces->warm_rotations(last_rotations_);
   const Eigen::Index nodes = body_.pieces->num_dof_nodes();
   if (body_.M.rows() != 3 * nodes || body_.load.size() != 3 * nodes || static_cast<Eigen::Index>(body_.dofs.free_index.size()) != 3 * nodes)
     throw std::invalid_argument("QuasiNewtonNewmark::set_body: the mass, load and DOF map must have 3 entries per DOF node");

@@ -59,6 +59,12 @@ public:
   /// `rotations`. If `rotations` holds one per piece already (the last evaluation's), each is
   /// found from there (a step moves them little); else from the identity.
   double energy(const Eigen::VectorXd& u, Eigen::VectorXd& f_int, std::vector<Eigen::Matrix3d>& rotations) const;
+  /// Where to start the rotations of these pieces from those of another body of the same mesh
+  /// (`rotations`, one per piece of that body, or at least one per tet; replaced in place, in the
+  /// same memory where it fits): a whole tet keeps its own, a special piece takes its tet's whole
+  /// piece's (which the pass turns in passing). After a cut the rotations are then a Newton
+  /// iteration or two from the polar ones, not eight from the identity.
+  void warm_rotations(std::vector<Eigen::Matrix3d>& rotations) const;
   /// K_R d with the warped stiffness at `rotations` (one per piece), and 1/2 d^T K_R d (J).
   double warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
   /// sum_s q_s g_s^T of every piece: the pieces' displacement gradients for q.
@@ -112,15 +118,26 @@ private:
   double energy_density(const Eigen::Matrix3d& strain) const;
   // Adds V P g_s of piece p to its slots.
   void add_piece_force(std::size_t p, const Eigen::Matrix3d& VP, Eigen::VectorXd& force) const;
-  // step_terms of one piece, the scalar way: the special pieces, the whole tets left over from
-  // the blocks, and a block's lane whose rotation needs chapter 2's decomposition.
+  // step_terms of one piece, the scalar way: the whole tets left over from the blocks, and a
+  // block's lane whose rotation needs chapter 2's decomposition.
   StepTerms piece_step_terms(std::size_t p, const Eigen::VectorXd& u, const Eigen::Matrix3d& reference_sum, double c,
                              const Eigen::Matrix3d& turned, Eigen::VectorXd& force, Eigen::Matrix3d& rotation,
                              double turn_tolerance) const;
-  // step_terms of the blocks, four whole tets at a time (corotated_piece_blocks.cpp).
+  // step_terms of the blocks, four pieces at a time (corotated_piece_blocks.cpp): the whole
+  // tets', then the special pieces'.
   StepTerms block_step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums, double c,
                              const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force, std::vector<Eigen::Matrix3d>& rotations,
                              double turn_tolerance) const;
+  // ... of one kind of block (`slots` slots a lane), `volumes` four a block.
+  template <int slots, class Block>
+  StepTerms blocks_step_terms(const std::vector<Block>& blocks, const double* volumes, const Eigen::VectorXd& u,
+                              const std::vector<Eigen::Matrix3d>& reference_sums, double c, const std::vector<Eigen::Matrix3d>& turned,
+                              Eigen::VectorXd& force, std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const;
+  // warped_product of the blocks (corotated_piece_blocks.cpp), and of one kind of block.
+  double block_warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
+  template <int slots, class Block>
+  double blocks_warped_product(const std::vector<Block>& blocks, const double* volumes, const std::vector<Eigen::Matrix3d>& rotations,
+                               const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
   // The Laplacian's entries of the given pieces (triplets summed).
   Eigen::SparseMatrix<double> laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const;
 
@@ -130,14 +147,18 @@ private:
   double mu_ = 0.0, lambda_ = 0.0;
   RotationMethod rotation_;
 
-  // The whole tets four to a block (tets 4k ... 4k + 3 in block k) and laid out lane by lane, so
-  // that step_terms evaluates four at once with one vector instruction per operation
-  // (corotated_piece_blocks.cpp); the volumes are each body's own (whole_volume_).
-  struct PieceBlock {
-    std::size_t piece[4] = {};        // the four pieces (tets), lane by lane
-    int dof[4][4] = {};               // [slot][lane]: the first DOF (3 node) of the slot
-    double gradient[4][3][4] = {};    // [slot][component][lane]: g_s
+  // Pieces four to a block and laid out lane by lane, so that step_terms evaluates four at once
+  // with one vector instruction per operation (corotated_piece_blocks.cpp): the whole tets (tets
+  // 4k ... 4k + 3 in block k, four slots) and the special pieces (up to eight slots, the missing
+  // ones with a zero gradient; a lane without a piece repeats lane 0's with no volume).
+  template <int slots>
+  struct PieceBlockOf {
+    std::size_t piece[4] = {};            // the four pieces, lane by lane
+    int dof[slots][4] = {};               // [slot][lane]: the first DOF (3 node) of the slot
+    double gradient[slots][3][4] = {};    // [slot][component][lane]: g_s
   };
+  using PieceBlock = PieceBlockOf<4>;     // the volumes are each body's own (whole_volume_)
+  using SpecialBlock = PieceBlockOf<8>;
   // What every cut of one mesh shares: each tet's four nodes and gradients, its volume, its block.
   struct WholeTets {
     std::vector<int> node;                 // 4 a tet
@@ -151,11 +172,14 @@ private:
   std::vector<int> special_tets_;
   // The special tets' pieces, piece num_tets_ + q for q = 0, 1, ...
   std::vector<double> volume_;              // V_p
+  std::vector<int> piece_tet_;              // the tet of each
   std::vector<int> first_slot_;             // piece q's slots are [first_slot_[q], first_slot_[q + 1])
   std::vector<int> slot_node_;              // the DOF node of each slot
   std::vector<Eigen::Vector3d> slot_gradient_; // g_s (1/m)
   std::vector<std::size_t> enriched_pieces_; // the pieces with an enrichment slot
-  std::vector<std::size_t> unblocked_;       // the pieces the blocks leave: special ones and the last tets
+  std::vector<SpecialBlock> special_blocks_;
+  std::vector<double> special_block_volume_; // 4 a special block, lane by lane (0: no piece)
+  std::vector<std::size_t> unblocked_;       // the whole tets the blocks leave: the last num_tets_ % 4
 };
 
 } // namespace kerf
