@@ -24,8 +24,8 @@
      distance of a node from the reference's over all steps, relative to the reference's largest
      displacement, and the sag (the lowest node's drop) at 1 s against the reference's.
    - a change of topology: the step's set_body from the liver cut up to x = -0.025 to the liver
-     cut up to x = -0.03, the blade 5 mm further (the factor of the mesh's nodes kept, the Schur
-     products of the enrichments the cut did not change kept), against a new integrator's set_body
+     cut up to x = -0.03, the blade 5 mm further (the factor of the mesh's nodes kept, the rows
+     of the enrichments the cut did not change kept), against a new integrator's set_body
      on the second (everything factorised); best of 5.
    The whole process's processor and wall time close the report: the program's own clocks are
    not all it costs. With --out FILE.md the rows also go to FILE.csv. */

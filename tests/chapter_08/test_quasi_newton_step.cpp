@@ -150,7 +150,7 @@ TEST_CASE("GrowingCholesky: the grown factor solves as the whole matrix's factor
   newmark.set_body(deeper.quasi_newton_body(deeper_pieces, 2.0, 0.01));
   CHECK(newmark.factorisations() == 1);
   CHECK(newmark.step_matrix().rows() > A.rows());
-  // The enrichments the deeper cut left as they were keep their Schur products (no solve).
+  // The enrichments the deeper cut left as they were keep their rows of the factor (no sweep).
   MESSAGE("enrichment columns kept: " << newmark.kept_enrichment_columns() << " of " << newmark.step_matrix().rows() - standard);
   CHECK(newmark.kept_enrichment_columns() > 0);
   CHECK(newmark.kept_enrichment_columns() < newmark.step_matrix().rows() - standard);
