@@ -96,10 +96,32 @@ void GrowingCholesky::solve(Eigen::MatrixXd& B) {
   Eigen::MatrixXd z;
   factor_->solve_down(B.topRows(n_s), z);
   if (k > 0) {
-    Eigen::MatrixXd x_e = B.bottomRows(k) - L_es_ * z;
+    // b_e - L_es z_s and z_s - L_es^T x_e row by row of L_es, the three right-hand sides of an
+    // entry together (Eigen's products take them one at a time).
+    const int* start = L_es_.outerIndexPtr();
+    const int* column = L_es_.innerIndexPtr();
+    const double* value = L_es_.valuePtr();
+    double* z_x = z.col(0).data();
+    double* z_y = z.col(1).data();
+    double* z_z = z.col(2).data();
+    Eigen::MatrixXd x_e = B.bottomRows(k);
+    for (Eigen::Index j = 0; j < k; ++j) {
+      double sum_x = 0.0, sum_y = 0.0, sum_z = 0.0;
+      for (int q = start[j]; q < start[j + 1]; ++q) {
+        const int i = column[q];
+        sum_x += value[q] * z_x[i], sum_y += value[q] * z_y[i], sum_z += value[q] * z_z[i];
+      }
+      x_e(j, 0) -= sum_x, x_e(j, 1) -= sum_y, x_e(j, 2) -= sum_z;
+    }
     schur_.matrixL().solveInPlace(x_e);
     schur_.matrixU().solveInPlace(x_e);
-    z.noalias() -= L_es_.transpose() * x_e;
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const double x = x_e(j, 0), y = x_e(j, 1), w = x_e(j, 2);
+      for (int q = start[j]; q < start[j + 1]; ++q) {
+        const int i = column[q];
+        z_x[i] -= value[q] * x, z_y[i] -= value[q] * y, z_z[i] -= value[q] * w;
+      }
+    }
     B.bottomRows(k) = x_e;
   }
   Eigen::MatrixXd x_s;
