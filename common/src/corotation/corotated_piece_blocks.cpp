@@ -261,7 +261,7 @@ WarpedPass<slots> chosen_warped_pass() {
 
 // The blocks' pass, and the lanes it leaves to the scalar way (piece_step_terms).
 template <int slots, class Block>
-CorotatedPieces::StepTerms CorotatedPieces::blocks_step_terms(const std::vector<Block>& blocks, const double* volumes, const Eigen::VectorXd& u,
+CorotatedPieces::StepTerms CorotatedPieces::step_terms_of_blocks(const std::vector<Block>& blocks, const double* volumes, const Eigen::VectorXd& u,
                                                               const std::vector<Eigen::Matrix3d>& reference_sums, double c,
                                                               const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
                                                               std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
@@ -292,8 +292,8 @@ CorotatedPieces::StepTerms CorotatedPieces::blocks_step_terms(const std::vector<
 CorotatedPieces::StepTerms CorotatedPieces::block_step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums,
                                                              double c, const std::vector<Eigen::Matrix3d>& turned, Eigen::VectorXd& force,
                                                              std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
-  StepTerms terms = blocks_step_terms<4>(whole_->blocks, whole_volume_.data(), u, reference_sums, c, turned, force, rotations, turn_tolerance);
-  const StepTerms special = blocks_step_terms<8>(special_blocks_, special_block_volume_.data(), u, reference_sums, c, turned, force, rotations,
+  StepTerms terms = step_terms_of_blocks<4>(whole_->blocks, whole_volume_.data(), u, reference_sums, c, turned, force, rotations, turn_tolerance);
+  const StepTerms special = step_terms_of_blocks<8>(special_blocks_, special_block_volume_.data(), u, reference_sums, c, turned, force, rotations,
                                                  turn_tolerance);
   terms.W += special.W;
   terms.half_dKd += special.half_dKd;
@@ -302,7 +302,7 @@ CorotatedPieces::StepTerms CorotatedPieces::block_step_terms(const Eigen::Vector
 
 // K_R d and 1/2 d^T K_R d of one kind of block.
 template <int slots, class Block>
-double CorotatedPieces::blocks_warped_product(const std::vector<Block>& blocks, const double* volumes,
+double CorotatedPieces::warped_product_of_blocks(const std::vector<Block>& blocks, const double* volumes,
                                               const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d,
                                               Eigen::VectorXd& K_d) const {
   const WarpedPass<slots> pass = chosen_warped_pass<slots>();
@@ -318,8 +318,8 @@ double CorotatedPieces::blocks_warped_product(const std::vector<Block>& blocks, 
 
 double CorotatedPieces::block_warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d,
                                              Eigen::VectorXd& K_d) const {
-  return blocks_warped_product<4>(whole_->blocks, whole_volume_.data(), rotations, d, K_d) +
-         blocks_warped_product<8>(special_blocks_, special_block_volume_.data(), rotations, d, K_d);
+  return warped_product_of_blocks<4>(whole_->blocks, whole_volume_.data(), rotations, d, K_d) +
+         warped_product_of_blocks<8>(special_blocks_, special_block_volume_.data(), rotations, d, K_d);
 }
 
 } // namespace kerf

@@ -75,12 +75,11 @@ void GrowingCholesky::set_trailing(const Eigen::SparseMatrix<double>& A_se, cons
       const Eigen::Index old_i = old_index[static_cast<std::size_t>(i)], old_j = old_index[static_cast<std::size_t>(j)];
       if (old_i >= 0 && old_j >= 0) products(i, j) = products_(old_i, old_j);
     }
-  Eigen::VectorXd row_j(n_s);
-  for (const Eigen::Index j : changed) {
-    row_j = L_es.row(j).transpose();
-    const Eigen::VectorXd with_j = L_es * row_j;
-    for (Eigen::Index i = 0; i < k; ++i) products(i, j) = products(j, i) = with_j[i];
-  }
+  // A new row's products with every row: L_es times its sweep, which is that row densely.
+  const Eigen::MatrixXd with_new = changed.empty() ? Eigen::MatrixXd(k, 0) : Eigen::MatrixXd(L_es * swept);
+  for (std::size_t c = 0; c < changed.size(); ++c)
+    for (Eigen::Index i = 0; i < k; ++i)
+      products(i, changed[c]) = products(changed[c], i) = with_new(i, static_cast<Eigen::Index>(c));
   schur_.compute(Eigen::MatrixXd(A_ee) - products);
   if (k > 0 && schur_.info() != Eigen::Success)
     throw std::runtime_error("GrowingCholesky: the trailing rows' Schur complement is not positive definite");

@@ -130,13 +130,13 @@ private:
                              double turn_tolerance) const;
   // ... of one kind of block (`slots` slots a lane), `volumes` four a block.
   template <int slots, class Block>
-  StepTerms blocks_step_terms(const std::vector<Block>& blocks, const double* volumes, const Eigen::VectorXd& u,
+  StepTerms step_terms_of_blocks(const std::vector<Block>& blocks, const double* volumes, const Eigen::VectorXd& u,
                               const std::vector<Eigen::Matrix3d>& reference_sums, double c, const std::vector<Eigen::Matrix3d>& turned,
                               Eigen::VectorXd& force, std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const;
   // warped_product of the blocks (corotated_piece_blocks.cpp), and of one kind of block.
   double block_warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
   template <int slots, class Block>
-  double blocks_warped_product(const std::vector<Block>& blocks, const double* volumes, const std::vector<Eigen::Matrix3d>& rotations,
+  double warped_product_of_blocks(const std::vector<Block>& blocks, const double* volumes, const std::vector<Eigen::Matrix3d>& rotations,
                                const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
   // The Laplacian's entries of the given pieces (triplets summed).
   Eigen::SparseMatrix<double> laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const;

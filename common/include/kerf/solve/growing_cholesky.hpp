@@ -28,8 +28,9 @@ class CholmodSolver;
 /// one pass down and one up CHOLMOD's L_ss (half of what a solve with A_ss costs), with the k
 /// sparse rows of L_es and the dense k x k L_S between them. Row j of L_es is the sweep down of
 /// column j of A_se alone: it is nonzero only on the rows of L_ss its entries reach (their paths to
-/// the elimination tree's root), and stored sparse. When the trailing rows change, the rows of L_es of columns that are the same as before
-/// are kept, with their products with each other in S; only new or changed columns cost a sweep.
+/// the elimination tree's root), and stored sparse. When the trailing rows change, the rows of L_es
+/// of columns that are the same as before are kept, with their products with each other in S; only
+/// new or changed columns cost a sweep.
 /// In chapter 8 A_ss is the block of the mesh's nodes, which a cut does not change (the volumes of
 /// a cut tet's pieces sum to the tet's), and the trailing rows are the enrichments': a cut that
 /// grows adds a few, and changes the few whose support it grew.
@@ -51,8 +52,6 @@ public:
   /// How many of the last set_trailing's columns were found among the ones before (their rows of
   /// L_es and their products with each other kept, no sweep).
   Eigen::Index kept_columns() const { return kept_columns_; }
-  /// Entries of L_es: what a solve passes over twice besides L_ss.
-  Eigen::Index trailing_entries() const { return L_es_.nonZeros(); }
 
   /// Solves A X = B for three right-hand sides (x, y and z), in place (rows: the leading
   /// unknowns, then the trailing ones).
