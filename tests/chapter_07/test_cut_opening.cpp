@@ -87,3 +87,42 @@ TEST_CASE("cut opening: a cut outside the body measures nothing, and bad argumen
   CHECK_THROWS_AS(kerf::measure_cut_opening(body.model, locator, u, {tilted_plane()}, 0.1, std::nan("")), std::invalid_argument);
   CHECK_THROWS_AS(kerf::measure_cut_opening(body.model, locator, u.head(3), {tilted_plane()}, 0.1, 1e-7), std::invalid_argument);
 }
+
+TEST_CASE("cut opening: sample points kept across a growing cut are the points a fresh sampling finds, and so is the opening") {
+  // A cut grows as chapters 7 and 8 grow theirs: the same first surface, then a second one, then
+  // the first with one triangle moved. Each update keeps the triangles it has seen and locates
+  // the others; what it holds must be what sampling the cuts afresh holds, point by point.
+  const support::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {4, 4, 4}), {tilted_plane()}, {3000.0, 0.45, 1000.0});
+  const kerf::PointLocator locator(body.mesh);
+  const double spacing = 0.05, eps = 1e-7;
+  const auto points_of = [&](const kerf::CutSamplePoints& points) {
+    std::vector<kerf::CutSamplePoints::Sample> all;
+    points.for_each_sample([&](const kerf::CutSamplePoints::Sample& s) { all.push_back(s); });
+    return all;
+  };
+  kerf::TriangleSurface second = kerf::rectangle_surface(kerf::RectangleCut({0.5, 0.2, 0.5}, {1, 0, 0}, {0, 0, 1}));
+  kerf::TriangleSurface moved = tilted_plane();
+  moved.vertices.row(moved.triangles(0, 0)).z() += 0.01;
+  kerf::CutSamplePoints grown(locator, spacing, eps);
+  for (const std::vector<kerf::TriangleSurface>& cuts : {std::vector{tilted_plane()}, std::vector{tilted_plane(), second}, std::vector{moved, second}}) {
+    grown.update(cuts);
+    kerf::CutSamplePoints fresh(locator, spacing, eps);
+    fresh.update(cuts);
+    const auto kept = points_of(grown), found = points_of(fresh);
+    REQUIRE(kept.size() == found.size());
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      CHECK(kept[k].area == found[k].area);
+      CHECK(kept[k].above.X == found[k].above.X);
+      CHECK(kept[k].above.tet == found[k].above.tet);
+      CHECK(kept[k].below.X == found[k].below.X);
+      CHECK(kept[k].below.tet == found[k].below.tet);
+    }
+  }
+  // The opening on the grown points is the one-call opening of the whole cut.
+  const Eigen::VectorXd u = separated_sides(body, 2.5e-3);
+  const kerf::CutOpening from_grown = kerf::CutOpeningSampler(body.model, grown).measure(u);
+  const kerf::CutOpening at_once = kerf::measure_cut_opening(body.model, locator, u, {moved, second}, spacing, eps);
+  CHECK(from_grown.samples == at_once.samples);
+  CHECK(from_grown.gap_volume == at_once.gap_volume);
+  CHECK(from_grown.area == at_once.area);
+}

@@ -54,8 +54,12 @@ void CutRunLog::write(int step, double t, const CutXfemModel& model, const CutSu
     write_probe_history_rows(history_csv_, step, t, values);
     if (step == 0 && outside > 0) std::cerr << "warning: " << outside << " probes lie outside the mesh; their history is nan\n";
   }
-  const double spacing = 0.5 * settings_.mean_edge;
-  if (!opening_) opening_ = std::make_unique<CutOpeningSampler>(model, locator_, cuts.surfaces(), spacing, 2e-6 * spacing);
+  if (!opening_) {
+    const double spacing = 0.5 * settings_.mean_edge;
+    if (!sample_points_) sample_points_.emplace(locator_, spacing, 2e-6 * spacing);
+    sample_points_->update(cuts.surfaces());
+    opening_ = std::make_unique<CutOpeningSampler>(model, *sample_points_);
+  }
   const CutOpening opening = opening_->measure(u);
   char row[512];
   std::snprintf(row, sizeof row, "%d,%.17g,%.9e,%.9e,%.9e,%.9e,%.9e\n", step, t, opening.area, opening.gap_volume, opening.mean_opening(),

@@ -5,8 +5,8 @@
 /// has opened, xfem/cut_opening.hpp) get a row every step, the probes' history too when asked
 /// for; the pieces go into the .pvd series every output.every steps and at the last step. The
 /// opening is the jump across the cut, sampled every half edge from points 2e-6 of an edge
-/// either side of it: where the points lie is found once per model (model_changed drops them),
-/// the jump at every step.
+/// either side of it: where the points lie is found once per cut triangle, their weights once per
+/// model (model_changed drops them), the jump at every step.
 #pragma once
 
 #include "kerf/cut/cut_surfaces.hpp"
@@ -44,7 +44,7 @@ public:
   /// @param locator a point locator of the reference mesh (kept by reference)
   /// @throws InputError naming a file that cannot be opened
   CutRunLog(CutRunLogSettings settings, const PointLocator& locator);
-  /// The model is about to change: the opening's sample points, found in its pieces, go.
+  /// The model is about to change: the opening's weights, found in its pieces, go.
   void model_changed() { opening_.reset(); }
   /// Step `step`'s rows (and .vtu): the body `model` cut by `cuts`, displaced by `u`.
   void write(int step, double t, const CutXfemModel& model, const CutSurfaces& cuts, const Eigen::VectorXd& u, const EnergyAccount& account);
@@ -57,6 +57,7 @@ private:
   const PointLocator& locator_;
   std::ofstream energy_csv_, opening_csv_, history_csv_;
   Eigen::MatrixXd probe_points_;
+  std::optional<CutSamplePoints> sample_points_;
   std::unique_ptr<CutOpeningSampler> opening_;
   std::vector<std::pair<double, std::filesystem::path>> frames_;
 };

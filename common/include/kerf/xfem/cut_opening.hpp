@@ -31,6 +31,9 @@
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace kerf {
@@ -47,9 +50,62 @@ struct CutOpening {
   double mean_opening() const { return area > 0.0 ? gap_volume / area : 0.0; }
 };
 
-/// The sample points of the cuts, each found once in its tet and piece on both sides, so that the
-/// opening of a field costs a few dot products per point: where the points lie changes only with
-/// the cut (chapter 7 makes a new one at each change of topology), the field at every step.
+/// Where the opening is sampled: the centroid c_s of every sub-triangle of every cut triangle,
+/// moved eps along the triangle's normal to either side, and the tets that hold the two points.
+/// This depends on the cuts and the reference mesh only, not on the model: a growing cut keeps
+/// the triangles it had, so update() finds the points of the triangles it has not seen and
+/// keeps the rest (chapter 7 would otherwise locate every point of the cut again at each change
+/// of topology, which costs more than the change itself).
+class CutSamplePoints {
+public:
+  /// A point and the tet that holds it (-1: outside the mesh).
+  struct Located {
+    Eigen::Vector3d X;
+    Eigen::Index tet;
+  };
+  /// A sub-triangle: its area, unit normal and the points either side of its centroid.
+  struct Sample {
+    double area;
+    Eigen::Vector3d n;
+    Located above; // c + eps n
+    Located below; // c - eps n
+  };
+
+  /// @param locator a point locator of the reference mesh (kept by reference)
+  /// @param spacing the largest distance (m) between sample points along a cut triangle's edges; > 0
+  /// @param eps     the distance (m) of the two points from the cut; > 0, small against the tets
+  /// @throws std::invalid_argument for spacing or eps <= 0 or not finite
+  CutSamplePoints(const PointLocator& locator, double spacing, double eps);
+
+  /// Samples `cuts` (the file's comment): a triangle already sampled, the same cut's same
+  /// triangle with the same corners, keeps its points; the others are located.
+  void update(const std::vector<TriangleSurface>& cuts);
+
+  /// Calls visit(sample) for every sub-triangle of every cut, in the cuts' and triangles' order.
+  template <class Visit>
+  void for_each_sample(Visit visit) const {
+    for (const auto& cut : cuts_)
+      for (const SampledTriangle& triangle : cut)
+        for (const Sample& sample : triangle.samples) visit(sample);
+  }
+
+private:
+  struct SampledTriangle {
+    Eigen::Matrix3d corners = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN()); // rows a, b, c; none yet: NaN
+    std::vector<Sample> samples;
+  };
+  SampledTriangle sample_triangle(const Eigen::Matrix3d& corners) const;
+
+  const PointLocator& locator_;
+  double spacing_;
+  double eps_;
+  std::vector<std::vector<SampledTriangle>> cuts_; // per cut, per triangle
+};
+
+/// The opening of a field across the cuts: each sample point's field as weights of the model's
+/// DOF nodes, so that the opening of a field costs a few dot products per point. The weights
+/// change with the model (chapter 7 makes a new sampler at each change of topology), the field
+/// at every step.
 class CutOpeningSampler {
 public:
   /// Samples `cuts` (the file's comment).
@@ -62,6 +118,12 @@ public:
   CutOpeningSampler(const CutXfemModel& model, const PointLocator& locator, const std::vector<TriangleSurface>& cuts, double spacing,
                     double eps);
 
+  /// The opening on `model` at points already located (a sub-triangle with a point outside the
+  /// mesh or outside every piece of its tet is left out).
+  /// @param model  the cut XFEM model whose fields will be measured (kept by reference)
+  /// @param points sample points located in model.mesh()
+  CutOpeningSampler(const CutXfemModel& model, const CutSamplePoints& points);
+
   /// The opening of the field u (3 model.num_dof_nodes() values).
   /// @throws std::invalid_argument for u of the wrong size
   CutOpening measure(const Eigen::VectorXd& u) const;
@@ -72,18 +134,16 @@ public:
 private:
   // The field at a point as sum_k weight_k u(node_k): the shape functions of the phantom element
   // of the piece that holds the point, and the branch functions acting there (CutXfemModel::
-  // displacement_at, unrolled once).
-  struct PointWeights {
-    std::vector<std::pair<int, double>> terms; // (DOF node, weight)
-    Eigen::Vector3d value(const Eigen::VectorXd& u) const;
-  };
+  // displacement_at, unrolled once). A sample's two points' terms lie one after the other in
+  // terms_: [above, below) at c + eps n, [below, end) at c - eps n.
   struct Sample {
-    double area;        // of the sub-triangle (m^2)
-    Eigen::Vector3d n;  // its unit normal
-    PointWeights above; // at c + eps n
-    PointWeights below; // at c - eps n
+    double area;       // of the sub-triangle (m^2)
+    Eigen::Vector3d n; // its unit normal
+    std::size_t above, below, end;
   };
+  Eigen::Vector3d value(const Eigen::VectorXd& u, std::size_t begin, std::size_t end) const;
   const CutXfemModel& model_;
+  std::vector<std::pair<int, double>> terms_; // (DOF node, weight)
   std::vector<Sample> samples_;
 };
 
