@@ -8,7 +8,8 @@
 // V (R sigma + c Q sigma_d) g_s. Gathering u and scattering the forces stay scalar (the lanes'
 // nodes differ). A lane whose F is inverted, whose Newton matrix is not positive definite or whose
 // rotation does not converge in 8 iterations is done again the scalar way, which falls back to
-// chapter 2's decomposition.
+// chapter 2's decomposition. warped_product (K_R d) and gradient_sums (the step's reference
+// gradients) have their own, shorter passes over the same blocks.
 //
 // No Eigen type crosses into the vectorised function: it is compiled twice (for AVX2 and FMA, and
 // for SSE2), and only plain arrays and GCC's vector extensions live in it.
@@ -257,6 +258,38 @@ WarpedPass<slots> chosen_warped_pass() {
   return pass;
 }
 
+// sum_s q_s g_s^T of a block's four pieces (CorotatedPieces::gradient_sums), stored piece by
+// piece; a lane without a piece repeats lane 0's piece and slots, and so its sum.
+template <int slots>
+__attribute__((always_inline)) inline void sums_block_pass(const BlockView<slots>& block, const double* q, double* sums) {
+  Lanes g[slots][3];
+  load_gradients(block, g);
+  Lanes3x3 sum;
+  gradient_sum(block, g, q, sum);
+  for (int lane = 0; lane < 4; ++lane)
+    for (int k = 0; k < 9; ++k) sums[9 * block.piece[lane] + k] = sum.m[k][lane];
+}
+
+template <int slots>
+using SumsPass = void (*)(const BlockView<slots>&, const double*, double*);
+
+template <int slots>
+__attribute__((target("avx2,fma"))) void sums_block_pass_avx2(const BlockView<slots>& block, const double* q, double* sums) {
+  sums_block_pass(block, q, sums);
+}
+
+template <int slots>
+void sums_block_pass_sse2(const BlockView<slots>& block, const double* q, double* sums) {
+  sums_block_pass(block, q, sums);
+}
+
+template <int slots>
+SumsPass<slots> chosen_sums_pass() {
+  static const SumsPass<slots> pass =
+      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? sums_block_pass_avx2<slots> : sums_block_pass_sse2<slots>;
+  return pass;
+}
+
 } // namespace
 
 // The blocks' pass, and the lanes it leaves to the scalar way (piece_step_terms).
@@ -320,6 +353,19 @@ double CorotatedPieces::block_warped_product(const std::vector<Eigen::Matrix3d>&
                                              Eigen::VectorXd& K_d) const {
   return warped_product_of_blocks<4>(whole_->blocks, whole_volume_.data(), rotations, d, K_d) +
          warped_product_of_blocks<8>(special_blocks_, special_block_volume_.data(), rotations, d, K_d);
+}
+
+// The gradient sums of one kind of block.
+template <int slots, class Block>
+void CorotatedPieces::gradient_sums_of_blocks(const std::vector<Block>& blocks, const Eigen::VectorXd& q,
+                                              std::vector<Eigen::Matrix3d>& sums) const {
+  const SumsPass<slots> pass = chosen_sums_pass<slots>();
+  for (const Block& block : blocks) pass({block.dof, block.gradient, nullptr, block.piece}, q.data(), sums.data()->data());
+}
+
+void CorotatedPieces::block_gradient_sums(const Eigen::VectorXd& q, std::vector<Eigen::Matrix3d>& sums) const {
+  gradient_sums_of_blocks<4>(whole_->blocks, q, sums);
+  gradient_sums_of_blocks<8>(special_blocks_, q, sums);
 }
 
 } // namespace kerf

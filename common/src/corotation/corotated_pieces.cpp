@@ -234,9 +234,17 @@ double CorotatedPieces::warped_product(const std::vector<Eigen::Matrix3d>& rotat
 }
 
 std::vector<Eigen::Matrix3d> CorotatedPieces::gradient_sums(const Eigen::VectorXd& q) const {
-  std::vector<Eigen::Matrix3d> sums(static_cast<std::size_t>(num_pieces()));
-  for (std::size_t p = 0; p < sums.size(); ++p) sums[p] = gradient_sum(q, p);
+  std::vector<Eigen::Matrix3d> sums;
+  gradient_sums(q, sums);
   return sums;
+}
+
+void CorotatedPieces::gradient_sums(const Eigen::VectorXd& q, std::vector<Eigen::Matrix3d>& sums) const {
+  sums.resize(static_cast<std::size_t>(num_pieces()));
+  // Every special piece and the whole tets of the blocks four at a time, then the tets after
+  // the last whole block (special or not) one by one.
+  block_gradient_sums(q, sums);
+  for (std::size_t t = 4 * whole_->blocks.size(); t < num_tets_; ++t) sums[t] = gradient_sum(q, t);
 }
 
 CorotatedPieces::StepTerms CorotatedPieces::step_terms(const Eigen::VectorXd& u, const std::vector<Eigen::Matrix3d>& reference_sums,

@@ -235,7 +235,7 @@ QuasiNewtonStepReport QuasiNewtonNewmark::step(DynamicState& state) {
   // (8.4)'s stiffness damping, c_D/2 |u - u~|^2_{K_R} + beta_R (K_R v~) . u, is c_D/2 |u - u^|^2_{K_R}
   // with u^ = u~ - (beta dt / gamma) v~ and a constant more: one warped term in the pieces' pass.
   auto start = std::chrono::steady_clock::now();
-  damping_reference_sums_ = body_.pieces->gradient_sums(u_tilde_ - (beta * dt_ / gamma) * v_tilde);
+  body_.pieces->gradient_sums(u_tilde_ - (beta * dt_ / gamma) * v_tilde, damping_reference_sums_);
   report.pieces_seconds += seconds_since(start);
 
   // L-BFGS on (8.4) from the guess a_{n+1} = a_n, with A^{-1} (8.6) as the initial inverse Hessian.

@@ -69,6 +69,8 @@ public:
   double warped_product(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
   /// sum_s q_s g_s^T of every piece: the pieces' displacement gradients for q.
   std::vector<Eigen::Matrix3d> gradient_sums(const Eigen::VectorXd& q) const;
+  /// The same into `sums` (resized to one per piece), so that a step reuses its memory.
+  void gradient_sums(const Eigen::VectorXd& q, std::vector<Eigen::Matrix3d>& sums) const;
   /// What chapter 8's step asks of the pieces at u, in one pass over them:
   ///   W(u) + c/2 d^T K_R d  and its gradient  f_int(u) + c K_R d,   d = u - u_ref,
   /// with the warped stiffness K_R at the rotations `turned` (one per piece) and u_ref given by its
@@ -138,6 +140,10 @@ private:
   template <int slots, class Block>
   double warped_product_of_blocks(const std::vector<Block>& blocks, const double* volumes, const std::vector<Eigen::Matrix3d>& rotations,
                                const Eigen::VectorXd& d, Eigen::VectorXd& K_d) const;
+  // gradient_sums of the blocks (corotated_piece_blocks.cpp), and of one kind of block.
+  void block_gradient_sums(const Eigen::VectorXd& q, std::vector<Eigen::Matrix3d>& sums) const;
+  template <int slots, class Block>
+  void gradient_sums_of_blocks(const std::vector<Block>& blocks, const Eigen::VectorXd& q, std::vector<Eigen::Matrix3d>& sums) const;
   // The Laplacian's entries of the given pieces (triplets summed).
   Eigen::SparseMatrix<double> laplacian_of(const std::vector<std::size_t>& pieces, bool enrichment_rows_only) const;
 
