@@ -317,12 +317,12 @@ private:
   double energy_scale_ = 0.0;
   kerf::QuasiNewtonStepReport last_report_;
 
-  // Pictures: the fine visual surface, the view, and the visual triangles the body's cut tore
-  // (found once per body, by the thread that draws).
+  // Pictures: the fine visual surface, the view, and the skin split along the body's cut (once
+  // per body, by the thread that draws).
   std::unique_ptr<kerf::VisualSurface> visual_;
   std::unique_ptr<kerf::OrganView> view_;
-  std::shared_ptr<const CutBody> untorn_body_;
-  std::vector<int> untorn_;
+  std::shared_ptr<const CutBody> skin_body_; // the body skin_ was split for
+  std::unique_ptr<kerf::CutSkin> skin_;
   std::vector<std::filesystem::path> png_frames_;
 
   // Output along the run.
@@ -465,16 +465,15 @@ void RealTimeCut::step(int n, const kerf::BladeEdge* blade, bool blade_last) {
 
 // @sect4{RealTimeCut::draw}
 //
-// As chapter 7's: the visual surface moved by the field of the piece each vertex lies in,
-// without the triangles the cut tore, and the walls of the cut; and the blade where it is.
+// As chapter 7's, the visual surface moved by the field of the piece each vertex lies in, the
+// walls of the cut and the blade where it is; but the triangles the cut tore are split along it
+// (kerf::CutSkin), not dropped, so that the wound's rim follows the cut.
 void RealTimeCut::draw(const std::shared_ptr<const CutBody>& body, const Eigen::VectorXd& u, const std::optional<kerf::BladeEdge>& blade) {
-  if (untorn_body_ != body) {
-    untorn_ = body->cuts->num_surfaces() > 0 ? kerf::untorn_triangles(visual_->reference(), *body->cuts) : std::vector<int>{};
-    untorn_body_ = body;
+  if (skin_body_ != body) {
+    skin_ = std::make_unique<kerf::CutSkin>(*visual_, *body->cuts, *organ_->locator);
+    skin_body_ = body;
   }
-  kerf::TriangleSurface skin = visual_->deform(kerf::xfem_visual_displacement(*body->model, u));
-  if (body->cuts->num_surfaces() > 0) skin = kerf::keep_triangles(skin, untorn_);
-  view_->show(skin, kerf::cut_face_surface(*body->model, u), blade);
+  view_->show(skin_->deform(kerf::xfem_visual_displacement(*body->model, u)), kerf::cut_face_surface(*body->model, u), blade);
 }
 
 // @sect4{RealTimeCut::write_timings_row}

@@ -9,6 +9,7 @@
 #include "kerf/mesh/implicit_surface_mesh.hpp"
 #include "kerf/mesh/liver_mesh.hpp"
 #include "kerf/mesh/liver_shape.hpp"
+#include "kerf/mesh/point_locator.hpp"
 #include "kerf/xfem/visual_surface.hpp"
 #include "support/relative_approx.hpp"
 
@@ -54,6 +55,27 @@ double mesh_volume(const kerf::TetMesh& mesh) {
     volume += (X.row(1) - X.row(0)).dot((X.row(2) - X.row(0)).cross(X.row(3) - X.row(0))) / 6.0;
   }
   return volume;
+}
+
+// A unit box cut clean through by the plane z = 0.43, and the field that lifts the pieces above
+// it (H = +1) by u_plus and sinks those below by u_minus: at every node, u_i is its home side's
+// value and a_k the other side's minus it (tests/chapter_04's piecewise_field).
+kerf::TriangleSurface level_cut() {
+  kerf::TriangleSurface cut;
+  cut.vertices = Eigen::MatrixX3d{{-1, -1, 0.43}, {2, -1, 0.43}, {2, 2, 0.43}, {-1, 2, 0.43}};
+  cut.triangles = Eigen::MatrixX3i{{0, 1, 2}, {0, 2, 3}};
+  return cut;
+}
+const Eigen::Vector3d u_plus(0.02, 0.0, 0.1), u_minus(0.0, -0.01, -0.05);
+Eigen::Vector3d side_value(const Eigen::Vector3d& x) { return x.z() > 0.43 ? u_plus : u_minus; }
+Eigen::VectorXd two_sided_field(const support::CutBody& body) {
+  const Eigen::Index N = body.mesh.num_nodes();
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes());
+  for (Eigen::Index i = 0; i < N; ++i) u.segment<3>(3 * i) = side_value(row(body.mesh.nodes, i));
+  for (Eigen::Index i = 0; i < N; ++i)
+    for (int k = body.enrichment.first_enrichment[static_cast<std::size_t>(i)]; k < body.enrichment.first_enrichment[static_cast<std::size_t>(i) + 1]; ++k)
+      u.segment<3>(3 * (N + k)) = (row(body.mesh.nodes, i).z() > 0.43 ? u_minus : u_plus) - u.segment<3>(3 * i);
+  return u;
 }
 
 } // namespace
@@ -145,26 +167,15 @@ TEST_CASE("a rigid motion moves every vertex by it, a tet's linear field matches
 }
 
 TEST_CASE("across an opened XFEM cut each vertex takes its side's displacement; the triangles across the gap are dropped") {
-  // A unit box cut clean through by the plane z = 0.43, and a visual sphere inside it.
-  kerf::TriangleSurface cut;
-  cut.vertices = Eigen::MatrixX3d{{-1, -1, 0.43}, {2, -1, 0.43}, {2, 2, 0.43}, {-1, 2, 0.43}};
-  cut.triangles = Eigen::MatrixX3i{{0, 1, 2}, {0, 2, 3}};
+  // A unit box cut clean through by the plane z = 0.43 (level_cut), a visual sphere inside it,
+  // and the field that moves each side by its own constant (two_sided_field).
+  const kerf::TriangleSurface cut = level_cut();
   const kerf::LinearMaterial material{1000.0, 0.3, 1.0};
   const support::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 4}), {cut}, material);
   const Eigen::Vector3d centre(0.5, 0.5, 0.5);
   const kerf::TriangleSurface sphere = kerf::implicit_surface_mesh(
       [&](const Eigen::Vector3d& x) { return (x - centre).norm() - 0.4; }, centre, 0.49, kerf::implicit_surface_sizing(0.05));
-
-  // The pieces above (H = +1) lift by u_plus, those below sink by u_minus: at every node, u_i is
-  // its home side's value and a_k the other side's minus it (tests/chapter_04's piecewise_field).
-  const Eigen::Vector3d u_plus(0.02, 0.0, 0.1), u_minus(0.0, -0.01, -0.05);
-  const auto side_value = [&](const Eigen::Vector3d& x) { return x.z() > 0.43 ? u_plus : u_minus; };
-  const Eigen::Index N = body.mesh.num_nodes();
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * body.model.num_dof_nodes());
-  for (Eigen::Index i = 0; i < N; ++i) u.segment<3>(3 * i) = side_value(row(body.mesh.nodes, i));
-  for (Eigen::Index i = 0; i < N; ++i)
-    for (int k = body.enrichment.first_enrichment[static_cast<std::size_t>(i)]; k < body.enrichment.first_enrichment[static_cast<std::size_t>(i) + 1]; ++k)
-      u.segment<3>(3 * (N + k)) = (row(body.mesh.nodes, i).z() > 0.43 ? u_minus : u_plus) - u.segment<3>(3 * i);
+  const Eigen::VectorXd u = two_sided_field(body);
 
   const kerf::VisualSurface visual(body.mesh, sphere);
   CHECK(visual.num_outside() == 0);
@@ -210,4 +221,52 @@ TEST_CASE("across an opened XFEM cut each vertex takes its side's displacement; 
   }
   MESSAGE("bulging sphere: outside ", outside.num_outside(), " of ", bulging.num_vertices(), ", largest distance ", outside.largest_distance());
   CHECK(worst_outside < 1e-14);
+}
+
+TEST_CASE("chapter 8's skin: the torn triangles split along the cut, each part moved with its side, and no area lost") {
+  // The box, cut and two-sided field of the case above, and its bulging sphere, whose vertices
+  // lie up to 2 cm out of the box, also out of cut tets: there the clamped point of a cut tet
+  // may lie across the cut (the case above measures only 5 cm away from it). CutSkin splits each
+  // torn triangle along the cut and moves every corner of a split triangle, and every point
+  // where the cut crosses an edge, with the field at a point of its own side inside the body.
+  const kerf::TriangleSurface cut = level_cut();
+  const support::CutBody body(kerf::make_box_mesh({0, 0, 0}, {1, 1, 1}, {3, 3, 4}), {cut}, {1000.0, 0.3, 1.0});
+  const Eigen::Vector3d centre(0.5, 0.5, 0.5);
+  const Eigen::VectorXd u = two_sided_field(body);
+  const kerf::TriangleSurface bulging = kerf::implicit_surface_mesh(
+      [&](const Eigen::Vector3d& x) { return (x - centre).norm() - 0.52; }, centre, 0.6, kerf::implicit_surface_sizing(0.05));
+  const kerf::VisualSurface visual(body.mesh, bulging);
+  const kerf::PointLocator locator(body.mesh);
+  const kerf::CutSkin skin(visual, kerf::CutSurfaces({cut}), locator);
+  MESSAGE("torn triangles split ", skin.num_split(), ", dropped ", skin.num_dropped(), " of ", bulging.num_triangles());
+  CHECK(skin.num_split() > 0);
+  CHECK(skin.num_dropped() == 0); // a plane crosses a triangle through two edges or none
+
+  // Unmoved, the skin covers the visual surface exactly: the area of the split parts is the torn
+  // triangles' (which untorn_triangles drops).
+  const auto area = [](const kerf::TriangleSurface& s) {
+    double sum = 0.0;
+    for (Eigen::Index f = 0; f < s.num_triangles(); ++f)
+      sum += 0.5 * (row(s.vertices, s.triangles(f, 1)) - row(s.vertices, s.triangles(f, 0)))
+                       .cross(row(s.vertices, s.triangles(f, 2)) - row(s.vertices, s.triangles(f, 0)))
+                       .norm();
+    return sum;
+  };
+  const kerf::TriangleSurface at_rest = skin.deform([](int, const Eigen::Vector3d&) { return Eigen::Vector3d::Zero(); });
+  CHECK(area(at_rest) == kerf_test::relative(area(bulging), 1e-12));
+  CHECK(area(kerf::keep_triangles(bulging, kerf::untorn_triangles(bulging, kerf::CutSurfaces({cut})))) < 0.99 * area(bulging));
+
+  // Opened: every corner of every triangle of the skin moves with the side of that triangle.
+  const kerf::TriangleSurface moved = skin.deform(kerf::xfem_visual_displacement(body.model, u));
+  REQUIRE(moved.num_vertices() == at_rest.num_vertices());
+  double worst = 0.0;
+  for (Eigen::Index f = 0; f < moved.num_triangles(); ++f) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a) centroid += row(at_rest.vertices, at_rest.triangles(f, a)) / 3.0;
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Index v = moved.triangles(f, a);
+      worst = std::max(worst, (row(moved.vertices, v) - row(at_rest.vertices, v) - side_value(centroid)).norm());
+    }
+  }
+  CHECK(worst < 1e-14);
 }

@@ -6,7 +6,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace kerf {
@@ -148,6 +150,109 @@ TriangleSurface keep_triangles(const TriangleSurface& surface, const std::vector
   kept.triangles.resize(static_cast<Eigen::Index>(keep.size()), 3);
   for (std::size_t i = 0; i < keep.size(); ++i) kept.triangles.row(static_cast<Eigen::Index>(i)) = surface.triangles.row(keep[i]);
   return kept;
+}
+
+CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const PointLocator& locator) : visual_(visual) {
+  const TriangleSurface& skin = visual.reference();
+  // Where the cut crosses the edge p q: the parameter s of p + s (q - p), and the plane of the
+  // cut triangle it crosses there (unit normal, a point); none if it does not.
+  struct Crossing {
+    double s;
+    Eigen::Vector3d normal, point;
+  };
+  const auto crossing = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) -> std::optional<Crossing> {
+    for (const CutTriangle& t : cuts.triangles_near_segment(p, q))
+      if (segment_crosses_triangle(p, q, t.corners[0], t.corners[1], t.corners[2])) {
+        const double h_p = orientation(t.corners[0], t.corners[1], t.corners[2], p);
+        const double h_q = orientation(t.corners[0], t.corners[1], t.corners[2], q);
+        return Crossing{h_p / (h_p - h_q), (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).normalized(), t.corners[0]};
+      }
+    return std::nullopt;
+  };
+  // Where a point p of the side of vertex w moves: as the field at p pushed into the body (the
+  // fine skin pokes out between the tets' corners, and a tet's field extrapolated to a point
+  // outside it is taken at its nearest point, which near a cut may lie across it), along the
+  // skin's inward normal n_in made parallel to the cut. The push is twice the farthest any skin
+  // vertex lies out, or half, a quarter, an eighth of that, or none: the first whose point lies
+  // in a tet and is joined to w by a segment that crosses no cut triangle (the sheet is not
+  // flat, and the push must keep the side). None if no such point is found.
+  const double inward = 2.0 * visual.largest_distance();
+  const auto follower = [&](const Eigen::Vector3d& p, Eigen::Index w, const Crossing& c, const Eigen::Vector3d& n_in) -> std::optional<Follower> {
+    const Eigen::Vector3d along = n_in - n_in.dot(c.normal) * c.normal;
+    const Eigen::Vector3d direction = along.norm() > 1e-3 ? Eigen::Vector3d(along.normalized()) : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d x_w = row(skin.vertices, w);
+    for (const double push : {inward, 0.5 * inward, 0.25 * inward, 0.125 * inward, 0.0}) {
+      const Eigen::Vector3d at = p + push * direction;
+      if (crossing(x_w, at)) continue;
+      const PointLocation where = locator.locate(at);
+      if (where.tet >= 0) return Follower{static_cast<int>(where.tet), at};
+    }
+    return std::nullopt;
+  };
+  // A vertex of a split triangle follows its side (a follower, if one is found; else as
+  // VisualSurface moves it). The point X of edge (a, b) where the cut crosses it, for the side of
+  // its vertex w: a follower from a quarter of the way from X to w (off the cut by more than
+  // round-off), else as w moves.
+  std::vector<char> seen(static_cast<std::size_t>(skin.num_vertices()), 0);
+  const auto follow_vertex = [&](Eigen::Index w, const Crossing& c, const Eigen::Vector3d& n_in) {
+    if (seen[static_cast<std::size_t>(w)]) return;
+    seen[static_cast<std::size_t>(w)] = 1;
+    if (const auto f = follower(row(skin.vertices, w), w, c, n_in)) vertex_followers_.emplace_back(static_cast<int>(w), *f);
+  };
+  const auto rim_point = [&](const Crossing& c, const Eigen::Vector3d& a, const Eigen::Vector3d& b, Eigen::Index w,
+                             const Eigen::Vector3d& n_in) {
+    const Eigen::Vector3d X = a + c.s * (b - a);
+    rim_.push_back({X, follower(X + 0.25 * (row(skin.vertices, w) - X), w, c, n_in), static_cast<int>(w)});
+    return static_cast<int>(skin.num_vertices()) + static_cast<int>(rim_.size()) - 1;
+  };
+  for (Eigen::Index f = 0; f < skin.num_triangles(); ++f) {
+    std::array<Eigen::Index, 3> c{skin.triangles(f, 0), skin.triangles(f, 1), skin.triangles(f, 2)};
+    std::array<std::optional<Crossing>, 3> s; // edge k from corner k to corner k + 1
+    int crossed = 0;
+    for (int k = 0; k < 3; ++k) crossed += (s[k] = crossing(row(skin.vertices, c[k]), row(skin.vertices, c[(k + 1) % 3]))).has_value();
+    if (crossed == 0) {
+      untorn_.push_back(static_cast<int>(f));
+      continue;
+    }
+    if (crossed != 2) {
+      ++dropped_;
+      continue;
+    }
+    // The corner both crossed edges meet, w0, alone on its side; w1 and w2 on the other. The
+    // cut meets w0 w1 at P and w2 w0 at Q.
+    const int k = !s[0] ? 2 : !s[1] ? 0 : 1; // the uncrossed edge, w1 w2, is edge (k + 1) % 3
+    const Eigen::Index w0 = c[k], w1 = c[(k + 1) % 3], w2 = c[(k + 2) % 3];
+    const Eigen::Vector3d x0 = row(skin.vertices, w0), x1 = row(skin.vertices, w1), x2 = row(skin.vertices, w2);
+    const Eigen::Vector3d n_in = -(x1 - x0).cross(x2 - x0).normalized(); // the skin is oriented outwards
+    const Crossing& P = *s[k];           // on w0 w1
+    const Crossing& Q = *s[(k + 2) % 3]; // on w2 w0
+    follow_vertex(w0, P, n_in), follow_vertex(w1, P, n_in), follow_vertex(w2, Q, n_in);
+    const int P0 = rim_point(P, x0, x1, w0, n_in), P1 = rim_point(P, x0, x1, w1, n_in);
+    const int Q0 = rim_point(Q, x2, x0, w0, n_in), Q1 = rim_point(Q, x2, x0, w2, n_in);
+    const int v0 = static_cast<int>(w0), v1 = static_cast<int>(w1), v2 = static_cast<int>(w2);
+    // The original's orientation kept: w0 P Q on one side, P w1 w2 and P w2 Q on the other.
+    split_.insert(split_.end(), {Eigen::Vector3i(v0, P0, Q0), Eigen::Vector3i(P1, v1, v2), Eigen::Vector3i(P1, v2, Q1)});
+  }
+}
+
+TriangleSurface CutSkin::deform(const VisualDisplacement& u) const {
+  const TriangleSurface& reference = visual_.reference();
+  TriangleSurface moved = visual_.deform(u);
+  for (const auto& [w, f] : vertex_followers_) moved.vertices.row(w) = (row(reference.vertices, w) + u(f.tet, f.at)).transpose();
+  const Eigen::Index n = moved.num_vertices();
+  TriangleSurface skin;
+  skin.vertices.resize(n + static_cast<Eigen::Index>(rim_.size()), 3);
+  skin.vertices.topRows(n) = moved.vertices;
+  for (std::size_t k = 0; k < rim_.size(); ++k) {
+    const RimPoint& r = rim_[k];
+    const Eigen::Vector3d u_r = r.follower ? u(r.follower->tet, r.follower->at) : Eigen::Vector3d(row(moved.vertices, r.w) - row(reference.vertices, r.w));
+    skin.vertices.row(n + static_cast<Eigen::Index>(k)) = (r.X + u_r).transpose();
+  }
+  skin.triangles.resize(static_cast<Eigen::Index>(untorn_.size() + split_.size()), 3);
+  Eigen::Index row_index = 0;
+  for (const int f : untorn_) skin.triangles.row(row_index++) = moved.triangles.row(f);
+  for (const Eigen::Vector3i& t : split_) skin.triangles.row(row_index++) = t.transpose();
+  return skin;
 }
 
 VisualDisplacement xfem_visual_displacement(const CutXfemModel& model, const Eigen::VectorXd& u) {

@@ -23,15 +23,19 @@
 /// configuration (untorn_triangles, keep_triangles). The gap then shows the background, or the far inside
 /// of the surface, between ragged edges about one visual triangle wide; the cut faces
 /// themselves are not drawn (Koschier section 7 builds them from the cut surface: an extension).
+/// Chapter 8 splits the torn triangles along the cut instead (CutSkin).
 #pragma once
 
 #include "kerf/cut/cut_surfaces.hpp"
+#include "kerf/mesh/point_locator.hpp"
 #include "kerf/mesh/tet_mesh.hpp"
 #include "kerf/mesh/triangle_surface.hpp"
 #include "kerf/xfem/cut_xfem_model.hpp"
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace kerf {
@@ -90,6 +94,51 @@ std::vector<int> untorn_triangles(const TriangleSurface& visual, const CutSurfac
 /// `surface` with only the triangles `keep` (same vertices): for a moved visual surface and
 /// untorn_triangles of its reference.
 TriangleSurface keep_triangles(const TriangleSurface& surface, const std::vector<int>& keep);
+
+/// The skin of a cut organ, drawn without a gap at the wound's rim: the visual surface's untorn
+/// triangles as they are, and each torn triangle that the cut crosses cleanly, through two of
+/// its edges once each, split along the cut into a triangle on one side and a quad (two
+/// triangles) on the other. The points where the cut crosses the two edges are doubled, one for
+/// each side, and each moves with its own side's field, as do the split triangles' corners:
+/// evaluated at a point of that side inside the body (the fine skin pokes out between the tets'
+/// corners, and the field extrapolated from a cut tet's nearest point may be the other side's,
+/// which is what makes the dropped triangles' edges ragged). The rim is then a line along the
+/// cut instead of the saw teeth that dropping torn triangles leaves (untorn_triangles). A torn
+/// triangle crossed otherwise (the cut ends inside it, or meets all three edges) is still dropped.
+class CutSkin {
+public:
+  /// @param visual  the visual surface (kept by reference)
+  /// @param cuts    the cut surfaces (reference configuration, m)
+  /// @param locator a point locator of the mesh the visual surface is embedded in
+  CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const PointLocator& locator);
+
+  /// The skin moved by u: the visual surface's vertices as VisualSurface::deform moves them, then
+  /// the rim's points; the untorn triangles, then the split ones.
+  TriangleSurface deform(const VisualDisplacement& u) const;
+  /// Torn triangles split along the cut, and torn triangles dropped.
+  int num_split() const { return static_cast<int>(split_.size() / 3); }
+  int num_dropped() const { return dropped_; }
+
+private:
+  // Where a point moves: as the field at `at`, a point of its side, in tet `tet`.
+  struct Follower {
+    int tet;
+    Eigen::Vector3d at;
+  };
+  // A point X where the cut crosses a visual edge, for the side of the edge's vertex w: it
+  // follows its follower, or, without one, moves as w does.
+  struct RimPoint {
+    Eigen::Vector3d X;
+    std::optional<Follower> follower;
+    int w;
+  };
+  const VisualSurface& visual_;
+  std::vector<int> untorn_;
+  std::vector<std::pair<int, Follower>> vertex_followers_; // the split triangles' vertices, moved with their side
+  std::vector<RimPoint> rim_;
+  std::vector<Eigen::Vector3i> split_; // corners: a visual vertex v, or rim point k as num_vertices + k
+  int dropped_ = 0;
+};
 
 /// The XFEM field as the visual surface asks for it: model.displacement_at(u, t, X), the field of
 /// the piece of t that holds X. A vertex just outside a cut tet lies in none of its pieces; it
