@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <map>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -449,7 +450,14 @@ TEST_CASE("the window under xvfb-run, paced by the wall clock, driven by events 
                                                dir / ("run_" + name));
     INFO(result.out, result.err);
     CHECK(result.exit_status == 0);
-    CHECK(without_style_warning(result.err).empty());
+    // Nothing on stderr but the meter's warning: on a loaded machine (the suite runs two tests at
+    // once, and the software OpenGL's threads draw beside the step's) one second may fall below
+    // 0.95 of real time, which the program must say; the run must still end in real time (below).
+    std::istringstream err_lines(without_style_warning(result.err));
+    for (std::string line; std::getline(err_lines, line);) {
+      if (line.rfind("warning: behind real time: ", 0) == 0) MESSAGE(line);
+      else CHECK(line.empty());
+    }
     const std::regex summary("real time: ([0-9.]+) s simulated in ([0-9.]+) s of wall-clock time \\(factor ([0-9.]+)\\); ([0-9]+) frames "
                              "drawn .*; ([0-9]+) tets cut .*; played 23 events");
     std::smatch match;
