@@ -112,6 +112,7 @@ TEST_CASE("cut opening: sample points kept across a growing cut are the points a
     REQUIRE(kept.size() == found.size());
     for (std::size_t k = 0; k < kept.size(); ++k) {
       CHECK(kept[k].area == found[k].area);
+      CHECK(kept[k].n == found[k].n);
       CHECK(kept[k].above.X == found[k].above.X);
       CHECK(kept[k].above.tet == found[k].above.tet);
       CHECK(kept[k].below.X == found[k].below.X);

@@ -256,6 +256,25 @@ TEST_CASE("chapter 8's skin: the torn triangles split along the cut, each part m
   CHECK(area(at_rest) == kerf_test::relative(area(bulging), 1e-12));
   CHECK(area(kerf::keep_triangles(bulging, kerf::untorn_triangles(bulging, kerf::CutSurfaces({cut})))) < 0.99 * area(bulging));
 
+  // Each side's skin is closed along the rim: the two triangles of a crossed edge share its point
+  // for each side, so every edge is shared by two triangles but the rim's own, which join two
+  // of those points (one triangle each: the cut's walls are drawn apart).
+  std::map<std::pair<int, int>, int> edge_uses;
+  for (Eigen::Index f = 0; f < at_rest.num_triangles(); ++f)
+    for (int a = 0; a < 3; ++a) {
+      const int i = at_rest.triangles(f, a), j = at_rest.triangles(f, (a + 1) % 3);
+      ++edge_uses[{std::min(i, j), std::max(i, j)}];
+    }
+  int rim_edges = 0, open_edges = 0;
+  for (const auto& [edge, uses] : edge_uses) {
+    const bool on_rim = edge.first >= bulging.num_vertices() && edge.second >= bulging.num_vertices();
+    rim_edges += on_rim ? 1 : 0;
+    open_edges += !on_rim && uses != 2 ? 1 : 0;
+    if (on_rim) CHECK(uses == 1);
+  }
+  CHECK(rim_edges > 0);
+  CHECK(open_edges == 0);
+
   // Opened: every corner of every triangle of the skin moves with the side of that triangle.
   const kerf::TriangleSurface moved = skin.deform(kerf::xfem_visual_displacement(body.model, u));
   REQUIRE(moved.num_vertices() == at_rest.num_vertices());

@@ -297,7 +297,7 @@ TEST_CASE("many passes: 1000 steps with the blade cutting, and where 4 iteration
   SUBCASE("a spiral inside the right lobe on 2000 tets: the blade cuts at every step for 1000 steps, nothing lost, energy bounded") {
     // The blade plunges through the skin in the first two steps and then follows an Archimedean
     // spiral about the right lobe's axis, r from 7 cm to 1.5 cm in three turns, at a constant
-    // 0.9 mm a step, its edge from 9 cm above the lobe's centre to 2 cm below it. It never
+    // 0.8 mm a step, its edge from 9 cm above the lobe's centre to 2 cm below it. It never
     // leaves the tissue, so the cut is one sheet, offered the blade's edge at every step and
     // keeping one every four or five (the default quad, a quarter of the mean edge); a spiral
     // never turns back on itself, so the sheet refuses no quad. The coils it leaves hang from

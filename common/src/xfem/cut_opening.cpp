@@ -13,8 +13,8 @@ Eigen::Vector3d CutOpeningSampler::value(const Eigen::VectorXd& u, std::size_t b
 }
 
 CutSamplePoints::CutSamplePoints(const PointLocator& locator, double spacing, double eps) : locator_(locator), spacing_(spacing), eps_(eps) {
-  if (!(spacing > 0.0) || !std::isfinite(spacing)) throw std::invalid_argument("CutOpeningSampler: spacing must be positive and finite");
-  if (!(eps > 0.0) || !std::isfinite(eps)) throw std::invalid_argument("CutOpeningSampler: eps must be positive and finite");
+  if (!(spacing > 0.0) || !std::isfinite(spacing)) throw std::invalid_argument("CutSamplePoints: spacing must be positive and finite");
+  if (!(eps > 0.0) || !std::isfinite(eps)) throw std::invalid_argument("CutSamplePoints: eps must be positive and finite");
 }
 
 CutSamplePoints::SampledTriangle CutSamplePoints::sample_triangle(const Eigen::Matrix3d& corners) const {

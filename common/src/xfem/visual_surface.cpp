@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <map>
 #include <optional>
 #include <utility>
 
@@ -199,11 +200,15 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
     seen[static_cast<std::size_t>(w)] = 1;
     if (const auto f = follower(row(skin.vertices, w), w, c, n_in)) vertex_followers_.emplace_back(static_cast<int>(w), *f);
   };
-  const auto rim_point = [&](const Crossing& c, const Eigen::Vector3d& a, const Eigen::Vector3d& b, Eigen::Index w,
-                             const Eigen::Vector3d& n_in) {
-    const Eigen::Vector3d X = a + c.s * (b - a);
+  // The two triangles that share a crossed edge share its point for each side, so that each
+  // side's skin stays closed along the rim.
+  std::map<std::array<Eigen::Index, 3>, int> rim_index; // (lower end, higher end, side's vertex) -> vertex
+  const auto rim_point = [&](const Crossing& c, Eigen::Index a, Eigen::Index b, Eigen::Index w, const Eigen::Vector3d& n_in) {
+    const auto [known, added] = rim_index.try_emplace({std::min(a, b), std::max(a, b), w}, 0);
+    if (!added) return known->second;
+    const Eigen::Vector3d x_a = row(skin.vertices, a), X = x_a + c.s * (row(skin.vertices, b) - x_a);
     rim_.push_back({X, follower(X + 0.25 * (row(skin.vertices, w) - X), w, c, n_in), static_cast<int>(w)});
-    return static_cast<int>(skin.num_vertices()) + static_cast<int>(rim_.size()) - 1;
+    return known->second = static_cast<int>(skin.num_vertices()) + static_cast<int>(rim_.size()) - 1;
   };
   for (Eigen::Index f = 0; f < skin.num_triangles(); ++f) {
     std::array<Eigen::Index, 3> c{skin.triangles(f, 0), skin.triangles(f, 1), skin.triangles(f, 2)};
@@ -227,8 +232,8 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
     const Crossing& P = *s[k];           // on w0 w1
     const Crossing& Q = *s[(k + 2) % 3]; // on w2 w0
     follow_vertex(w0, P, n_in), follow_vertex(w1, P, n_in), follow_vertex(w2, Q, n_in);
-    const int P0 = rim_point(P, x0, x1, w0, n_in), P1 = rim_point(P, x0, x1, w1, n_in);
-    const int Q0 = rim_point(Q, x2, x0, w0, n_in), Q1 = rim_point(Q, x2, x0, w2, n_in);
+    const int P0 = rim_point(P, w0, w1, w0, n_in), P1 = rim_point(P, w0, w1, w1, n_in);
+    const int Q0 = rim_point(Q, w2, w0, w0, n_in), Q1 = rim_point(Q, w2, w0, w2, n_in);
     const int v0 = static_cast<int>(w0), v1 = static_cast<int>(w1), v2 = static_cast<int>(w2);
     // The original's orientation kept: w0 P Q on one side, P w1 w2 and P w2 Q on the other.
     split_.insert(split_.end(), {Eigen::Vector3i(v0, P0, Q0), Eigen::Vector3i(P1, v1, v2), Eigen::Vector3i(P1, v2, Q1)});

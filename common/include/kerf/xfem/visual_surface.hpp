@@ -105,6 +105,8 @@ TriangleSurface keep_triangles(const TriangleSurface& surface, const std::vector
 /// which is what makes the dropped triangles' edges ragged). The rim is then a line along the
 /// cut instead of the saw teeth that dropping torn triangles leaves (untorn_triangles). A torn
 /// triangle crossed otherwise (the cut ends inside it, or meets all three edges) is still dropped.
+/// Each edge's first crossing is the one taken: an edge that two sheets cross, or one sheet twice,
+/// is split as if crossed once.
 class CutSkin {
 public:
   /// @param visual  the visual surface (kept by reference)
@@ -112,8 +114,10 @@ public:
   /// @param locator a point locator of the mesh the visual surface is embedded in
   CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const PointLocator& locator);
 
-  /// The skin moved by u: the visual surface's vertices as VisualSurface::deform moves them, then
-  /// the rim's points; the untorn triangles, then the split ones.
+  /// The skin moved by u: the visual surface's vertices as VisualSurface::deform moves them but
+  /// the split triangles' corners, which move with their side, then the rim's points (one for
+  /// each crossed edge and side, shared by the two triangles of the edge); the untorn triangles,
+  /// then the split ones.
   TriangleSurface deform(const VisualDisplacement& u) const;
   /// Torn triangles split along the cut, and torn triangles dropped.
   int num_split() const { return static_cast<int>(split_.size() / 3); }
