@@ -190,12 +190,11 @@ void block_pass_sse2(const BlockView<slots>& block, const double* u, const doubl
 }
 
 // AVX2 and FMA where this processor has both (asked once, when first needed), else SSE2, which
-// every x86-64 has.
-template <int slots>
-BlockPass<slots> chosen_block_pass() {
-  static const BlockPass<slots> pass =
-      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? block_pass_avx2<slots> : block_pass_sse2<slots>;
-  return pass;
+// every x86-64 has: of a pass compiled both ways, the one to call.
+template <class Pass>
+Pass chosen(Pass avx2, Pass sse2) {
+  static const bool fast = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return fast ? avx2 : sse2;
 }
 
 // K_R d at the rotations `turned`, four pieces at a time (CorotatedPieces::warped_product):
@@ -251,13 +250,6 @@ void warped_block_pass_sse2(const BlockView<slots>& block, const double* d, cons
   warped_block_pass(block, d, turned, K_d, mu, lambda, half_dKd);
 }
 
-template <int slots>
-WarpedPass<slots> chosen_warped_pass() {
-  static const WarpedPass<slots> pass =
-      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? warped_block_pass_avx2<slots> : warped_block_pass_sse2<slots>;
-  return pass;
-}
-
 // sum_s q_s g_s^T of a block's four pieces (CorotatedPieces::gradient_sums), stored piece by
 // piece; a lane without a piece repeats lane 0's piece and slots, and so its sum.
 template <int slots>
@@ -283,13 +275,6 @@ void sums_block_pass_sse2(const BlockView<slots>& block, const double* q, double
   sums_block_pass(block, q, sums);
 }
 
-template <int slots>
-SumsPass<slots> chosen_sums_pass() {
-  static const SumsPass<slots> pass =
-      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? sums_block_pass_avx2<slots> : sums_block_pass_sse2<slots>;
-  return pass;
-}
-
 } // namespace
 
 // The blocks' pass, and the lanes it leaves to the scalar way (piece_step_terms).
@@ -300,7 +285,7 @@ CorotatedPieces::StepTerms CorotatedPieces::step_terms_of_blocks(const std::vect
                                                               std::vector<Eigen::Matrix3d>& rotations, double turn_tolerance) const {
   StepTerms terms;
   LaneResults lanes;
-  const BlockPass<slots> pass = chosen_block_pass<slots>();
+  const BlockPass<slots> pass = chosen<BlockPass<slots>>(block_pass_avx2<slots>, block_pass_sse2<slots>);
   for (const Block& block : blocks) {
     const BlockView<slots> view{block.dof, block.gradient, volumes, block.piece};
     volumes += 4;
@@ -338,7 +323,7 @@ template <int slots, class Block>
 double CorotatedPieces::warped_product_of_blocks(const std::vector<Block>& blocks, const double* volumes,
                                               const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& d,
                                               Eigen::VectorXd& K_d) const {
-  const WarpedPass<slots> pass = chosen_warped_pass<slots>();
+  const WarpedPass<slots> pass = chosen<WarpedPass<slots>>(warped_block_pass_avx2<slots>, warped_block_pass_sse2<slots>);
   double half_dKd = 0.0, lanes[4];
   for (const Block& block : blocks) {
     const BlockView<slots> view{block.dof, block.gradient, volumes, block.piece};
@@ -359,7 +344,7 @@ double CorotatedPieces::block_warped_product(const std::vector<Eigen::Matrix3d>&
 template <int slots, class Block>
 void CorotatedPieces::gradient_sums_of_blocks(const std::vector<Block>& blocks, const Eigen::VectorXd& q,
                                               std::vector<Eigen::Matrix3d>& sums) const {
-  const SumsPass<slots> pass = chosen_sums_pass<slots>();
+  const SumsPass<slots> pass = chosen<SumsPass<slots>>(sums_block_pass_avx2<slots>, sums_block_pass_sse2<slots>);
   for (const Block& block : blocks) pass({block.dof, block.gradient, nullptr, block.piece}, q.data(), sums.data()->data());
 }
 

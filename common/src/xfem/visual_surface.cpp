@@ -71,6 +71,27 @@ bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q
   return (s_ab >= 0.0 && s_bc >= 0.0 && s_ca >= 0.0) || (s_ab <= 0.0 && s_bc <= 0.0 && s_ca <= 0.0);
 }
 
+/// Where a cut first crosses the segment p q: the parameter s of p + s (q - p), and the plane of
+/// the cut triangle it crosses there (unit normal, a point).
+struct SegmentCrossing {
+  double s;
+  Eigen::Vector3d normal, point;
+};
+
+/// The first cut triangle the segment p q crosses, if any. The segment asks the cuts' tree for
+/// the triangles near it (their boxes meet its box): the few the exact test then decides,
+/// instead of every triangle of a cut that may be long.
+std::optional<SegmentCrossing> first_crossing(const CutSurfaces& cuts, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+  for (const CutTriangle& t : cuts.triangles_near_segment(p, q))
+    if (segment_crosses_triangle(p, q, t.corners[0], t.corners[1], t.corners[2])) {
+      const double h_p = orientation(t.corners[0], t.corners[1], t.corners[2], p);
+      const double h_q = orientation(t.corners[0], t.corners[1], t.corners[2], q);
+      return SegmentCrossing{h_p / (h_p - h_q), (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).normalized(),
+                             t.corners[0]};
+    }
+  return std::nullopt;
+}
+
 } // namespace
 
 VisualSurface::VisualSurface(const TetMesh& mesh, TriangleSurface reference) : mesh_(mesh), reference_(std::move(reference)) {
@@ -128,13 +149,7 @@ TriangleSurface VisualSurface::deform(const VisualDisplacement& u) const {
 }
 
 std::vector<int> untorn_triangles(const TriangleSurface& visual, const CutSurfaces& cuts) {
-  // Each edge asks the cuts' tree for the triangles near it (their boxes meet its box): the few
-  // the exact test then decides, instead of every triangle of a cut that may be long.
-  const auto crosses_cut = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
-    for (const CutTriangle& t : cuts.triangles_near_segment(p, q))
-      if (segment_crosses_triangle(p, q, t.corners[0], t.corners[1], t.corners[2])) return true;
-    return false;
-  };
+  const auto crosses_cut = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) { return first_crossing(cuts, p, q).has_value(); };
   std::vector<int> keep;
   for (Eigen::Index f = 0; f < visual.num_triangles(); ++f) {
     bool torn = false;
@@ -155,21 +170,6 @@ TriangleSurface keep_triangles(const TriangleSurface& surface, const std::vector
 
 CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const PointLocator& locator) : visual_(visual) {
   const TriangleSurface& skin = visual.reference();
-  // Where the cut crosses the edge p q: the parameter s of p + s (q - p), and the plane of the
-  // cut triangle it crosses there (unit normal, a point); none if it does not.
-  struct Crossing {
-    double s;
-    Eigen::Vector3d normal, point;
-  };
-  const auto crossing = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) -> std::optional<Crossing> {
-    for (const CutTriangle& t : cuts.triangles_near_segment(p, q))
-      if (segment_crosses_triangle(p, q, t.corners[0], t.corners[1], t.corners[2])) {
-        const double h_p = orientation(t.corners[0], t.corners[1], t.corners[2], p);
-        const double h_q = orientation(t.corners[0], t.corners[1], t.corners[2], q);
-        return Crossing{h_p / (h_p - h_q), (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).normalized(), t.corners[0]};
-      }
-    return std::nullopt;
-  };
   // Where a point p of the side of vertex w moves: as the field at p pushed into the body (the
   // fine skin pokes out between the tets' corners, and a tet's field extrapolated to a point
   // outside it is taken at its nearest point, which near a cut may lie across it), along the
@@ -178,13 +178,13 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
   // in a tet and is joined to w by a segment that crosses no cut triangle (the sheet is not
   // flat, and the push must keep the side). None if no such point is found.
   const double inward = 2.0 * visual.largest_distance();
-  const auto follower = [&](const Eigen::Vector3d& p, Eigen::Index w, const Crossing& c, const Eigen::Vector3d& n_in) -> std::optional<Follower> {
+  const auto follower = [&](const Eigen::Vector3d& p, Eigen::Index w, const SegmentCrossing& c, const Eigen::Vector3d& n_in) -> std::optional<Follower> {
     const Eigen::Vector3d along = n_in - n_in.dot(c.normal) * c.normal;
     const Eigen::Vector3d direction = along.norm() > 1e-3 ? Eigen::Vector3d(along.normalized()) : Eigen::Vector3d::Zero();
     const Eigen::Vector3d x_w = row(skin.vertices, w);
     for (const double push : {inward, 0.5 * inward, 0.25 * inward, 0.125 * inward, 0.0}) {
       const Eigen::Vector3d at = p + push * direction;
-      if (crossing(x_w, at)) continue;
+      if (first_crossing(cuts, x_w, at)) continue;
       const PointLocation where = locator.locate(at);
       if (where.tet >= 0) return Follower{static_cast<int>(where.tet), at};
     }
@@ -195,7 +195,7 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
   // its vertex w: a follower from a quarter of the way from X to w (off the cut by more than
   // round-off), else as w moves.
   std::vector<char> seen(static_cast<std::size_t>(skin.num_vertices()), 0);
-  const auto follow_vertex = [&](Eigen::Index w, const Crossing& c, const Eigen::Vector3d& n_in) {
+  const auto follow_vertex = [&](Eigen::Index w, const SegmentCrossing& c, const Eigen::Vector3d& n_in) {
     if (seen[static_cast<std::size_t>(w)]) return;
     seen[static_cast<std::size_t>(w)] = 1;
     if (const auto f = follower(row(skin.vertices, w), w, c, n_in)) vertex_followers_.emplace_back(static_cast<int>(w), *f);
@@ -203,7 +203,7 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
   // The two triangles that share a crossed edge share its point for each side, so that each
   // side's skin stays closed along the rim.
   std::map<std::array<Eigen::Index, 3>, int> rim_index; // (lower end, higher end, side's vertex) -> vertex
-  const auto rim_point = [&](const Crossing& c, Eigen::Index a, Eigen::Index b, Eigen::Index w, const Eigen::Vector3d& n_in) {
+  const auto rim_point = [&](const SegmentCrossing& c, Eigen::Index a, Eigen::Index b, Eigen::Index w, const Eigen::Vector3d& n_in) {
     const auto [known, added] = rim_index.try_emplace({std::min(a, b), std::max(a, b), w}, 0);
     if (!added) return known->second;
     const Eigen::Vector3d x_a = row(skin.vertices, a), X = x_a + c.s * (row(skin.vertices, b) - x_a);
@@ -212,9 +212,9 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
   };
   for (Eigen::Index f = 0; f < skin.num_triangles(); ++f) {
     std::array<Eigen::Index, 3> c{skin.triangles(f, 0), skin.triangles(f, 1), skin.triangles(f, 2)};
-    std::array<std::optional<Crossing>, 3> s; // edge k from corner k to corner k + 1
+    std::array<std::optional<SegmentCrossing>, 3> s; // edge k from corner k to corner k + 1
     int crossed = 0;
-    for (int k = 0; k < 3; ++k) crossed += (s[k] = crossing(row(skin.vertices, c[k]), row(skin.vertices, c[(k + 1) % 3]))).has_value();
+    for (int k = 0; k < 3; ++k) crossed += (s[k] = first_crossing(cuts, row(skin.vertices, c[k]), row(skin.vertices, c[(k + 1) % 3]))).has_value();
     if (crossed == 0) {
       untorn_.push_back(static_cast<int>(f));
       continue;
@@ -229,8 +229,8 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
     const Eigen::Index w0 = c[k], w1 = c[(k + 1) % 3], w2 = c[(k + 2) % 3];
     const Eigen::Vector3d x0 = row(skin.vertices, w0), x1 = row(skin.vertices, w1), x2 = row(skin.vertices, w2);
     const Eigen::Vector3d n_in = -(x1 - x0).cross(x2 - x0).normalized(); // the skin is oriented outwards
-    const Crossing& P = *s[k];           // on w0 w1
-    const Crossing& Q = *s[(k + 2) % 3]; // on w2 w0
+    const SegmentCrossing& P = *s[k];           // on w0 w1
+    const SegmentCrossing& Q = *s[(k + 2) % 3]; // on w2 w0
     follow_vertex(w0, P, n_in), follow_vertex(w1, P, n_in), follow_vertex(w2, Q, n_in);
     const int P0 = rim_point(P, w0, w1, w0, n_in), P1 = rim_point(P, w0, w1, w1, n_in);
     const int Q0 = rim_point(Q, w2, w0, w0, n_in), Q1 = rim_point(Q, w2, w0, w2, n_in);
@@ -242,20 +242,18 @@ CutSkin::CutSkin(const VisualSurface& visual, const CutSurfaces& cuts, const Poi
 
 TriangleSurface CutSkin::deform(const VisualDisplacement& u) const {
   const TriangleSurface& reference = visual_.reference();
-  TriangleSurface moved = visual_.deform(u);
-  for (const auto& [w, f] : vertex_followers_) moved.vertices.row(w) = (row(reference.vertices, w) + u(f.tet, f.at)).transpose();
-  const Eigen::Index n = moved.num_vertices();
-  TriangleSurface skin;
-  skin.vertices.resize(n + static_cast<Eigen::Index>(rim_.size()), 3);
-  skin.vertices.topRows(n) = moved.vertices;
+  TriangleSurface skin = visual_.deform(u);
+  for (const auto& [w, f] : vertex_followers_) skin.vertices.row(w) = (row(reference.vertices, w) + u(f.tet, f.at)).transpose();
+  const Eigen::Index n = skin.num_vertices();
+  skin.vertices.conservativeResize(n + static_cast<Eigen::Index>(rim_.size()), 3);
   for (std::size_t k = 0; k < rim_.size(); ++k) {
     const RimPoint& r = rim_[k];
-    const Eigen::Vector3d u_r = r.follower ? u(r.follower->tet, r.follower->at) : Eigen::Vector3d(row(moved.vertices, r.w) - row(reference.vertices, r.w));
+    const Eigen::Vector3d u_r = r.follower ? u(r.follower->tet, r.follower->at) : Eigen::Vector3d(row(skin.vertices, r.w) - row(reference.vertices, r.w));
     skin.vertices.row(n + static_cast<Eigen::Index>(k)) = (r.X + u_r).transpose();
   }
   skin.triangles.resize(static_cast<Eigen::Index>(untorn_.size() + split_.size()), 3);
   Eigen::Index row_index = 0;
-  for (const int f : untorn_) skin.triangles.row(row_index++) = moved.triangles.row(f);
+  for (const int f : untorn_) skin.triangles.row(row_index++) = reference.triangles.row(f);
   for (const Eigen::Vector3i& t : split_) skin.triangles.row(row_index++) = t.transpose();
   return skin;
 }
